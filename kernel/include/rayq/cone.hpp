@@ -1,0 +1,77 @@
+// rayq — cone / frustum: radius r0 at p0 growing linearly to r1 at p1; either radius may be 0
+// (an apex). Open, or closed by disks at its non-zero ends (cap0 at p0, cap1 at p1).
+#pragma once
+
+#include "cylinder.hpp"  // Caps
+#include "detail/policy_ops.hpp"
+#include "detail/spans.hpp"
+#include "quadratic.hpp"
+#include "query.hpp"
+#include "validation.hpp"
+
+namespace rayq {
+
+template <class T>
+struct Cone {
+    using scalar_type = T;
+    Vec3<T> p0;
+    T r0;
+    Vec3<T> p1;
+    T r1;
+    Caps caps = Caps::none;
+};
+
+template <class T>
+struct is_primitive<Cone<T>> : std::true_type {};
+
+template <class T>
+inline Validation validate(const Cone<T>& c)
+{
+    return detail::Validator{}
+        .finite(c.p0, "Cone: p0 is NaN or infinite")
+        .finite(c.p1, "Cone: p1 is NaN or infinite")
+        .finite(c.r0, "Cone: r0 is NaN or infinite")
+        .finite(c.r1, "Cone: r1 is NaN or infinite")
+        .require(c.r0 >= T(0), Defect::nonpositive_radius, "Cone: r0 is negative")
+        .require(c.r1 >= T(0), Defect::nonpositive_radius, "Cone: r1 is negative")
+        .require(c.r0 > T(0) || c.r1 > T(0), Defect::degenerate, "Cone: r0 and r1 are both zero (a segment)")
+        .nonzero(c.p1 - c.p0, "Cone: axis p1 - p0 has zero length", "Cone: axis p1 - p0 is too long for the number type")
+        .require(c.caps == Caps::none || c.caps == Caps::both, Defect::degenerate, "Cone: caps is not a Caps value")
+        .result();
+}
+
+// The double cone through the frustum: distance to the axis = r(h), with h = (q·A)/|A|² the
+// height fraction and r(h) = r0 + (r1 − r0)·h. Scaled by |A| = L, as for the cylinder:
+// |(q + t·d) × A|² = (L·r0 + (r1 − r0)(q·A)/L + t·(r1 − r0)(d·A)/L)², the norm form with s ≠ 0.
+// Its second nappe has r(h) < 0, so it lies outside the slab 0 <= h <= 1 and the slab removes it.
+template <class Policy, class T>
+inline Crossings<T> crossings(Policy policy, const Ray<T>& ray, const Cone<T>& cone)
+{
+    const Vec3<T> axis = cone.p1 - cone.p0;
+    const Vec3<T> q = ray.origin - cone.p0;
+    const T len = length(axis);
+    const T slope = (cone.r1 - cone.r0) / len;
+    const NormQuadratic<T> f{detail::cross(policy, q, axis), detail::cross(policy, ray.direction, axis),
+                             len * cone.r0 + slope * detail::dot(policy, q, axis), slope * detail::dot(policy, ray.direction, axis)};
+    const Spans<T> side = solve_quadratic(policy, f);
+    const detail::Slab<T> slab = detail::axial_slab(policy, ray, cone.p0, cone.p1, axis);
+    if (cone.caps == Caps::both) return detail::capped_crossings(side, slab, {cone.r0 > T(0), cone.r1 > T(0)});
+    return detail::side_crossings_within(side, slab);
+}
+
+template <class T>
+inline Vec3<T> outward_normal(const Cone<T>& cone, const Vec3<T>& p, Part part)
+{
+    const Vec3<T> axis = cone.p1 - cone.p0;
+    if (part == Part::cap0) return -axis;
+    if (part == Part::cap1) return axis;
+    // ∇(|q⊥|² − r(h)²) on the surface is r·(q̂⊥ − (r1 − r0)/L · Â): radial out, tilted by the slope.
+    // At the apex q⊥ = 0 and the axial term alone remains, so there is no 0/0.
+    const Vec3<T> q = p - cone.p0;
+    const T len = length(axis);
+    const Vec3<T> along = axis / len;
+    const Vec3<T> radial = detail::unit(q - dot(q, along) * along);
+    return radial - ((cone.r1 - cone.r0) / len) * along;
+}
+
+}  // namespace rayq

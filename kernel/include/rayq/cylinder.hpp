@@ -1,0 +1,70 @@
+// rayq — cylinder: points within `radius` of the axis segment p0→p1; open, or closed by the
+// disks cap0 (at p0) and cap1 (at p1).
+#pragma once
+
+#include "detail/policy_ops.hpp"
+#include "detail/spans.hpp"
+#include "quadratic.hpp"
+#include "query.hpp"
+#include "validation.hpp"
+
+namespace rayq {
+
+enum class Caps : unsigned char { none, both };
+
+template <class T>
+struct Cylinder {
+    using scalar_type = T;
+    Vec3<T> p0, p1;
+    T radius;
+    Caps caps = Caps::none;
+
+    // The design notes' form: centred at `center`, axis direction `axis` (any length),
+    // extending half_height along it each way.
+    static Cylinder from_center(const Vec3<T>& center, const Vec3<T>& axis, T radius, T half_height, Caps caps = Caps::none)
+    {
+        const Vec3<T> h = detail::unit(axis) * half_height;
+        return {center - h, center + h, radius, caps};
+    }
+};
+
+template <class T>
+struct is_primitive<Cylinder<T>> : std::true_type {};
+
+template <class T>
+inline Validation validate(const Cylinder<T>& c)
+{
+    return detail::Validator{}
+        .finite(c.p0, "Cylinder: p0 is NaN or infinite")
+        .finite(c.p1, "Cylinder: p1 is NaN or infinite")
+        .finite(c.radius, "Cylinder: radius is NaN or infinite")
+        .positive(c.radius, "Cylinder: radius is zero or negative")
+        .nonzero(c.p1 - c.p0, "Cylinder: axis p1 - p0 has zero length", "Cylinder: axis p1 - p0 is too long for the number type")
+        .require(c.caps == Caps::none || c.caps == Caps::both, Defect::degenerate, "Cylinder: caps is not a Caps value")
+        .result();
+}
+
+// Infinite side: |(o + t·d − p0) × A|² = r²|A|², the norm form with u = (o − p0) × A,
+// v = d × A, w = r|A|: cross products take out the axial component without dividing by |A|².
+template <class Policy, class T>
+inline Crossings<T> crossings(Policy policy, const Ray<T>& ray, const Cylinder<T>& cyl)
+{
+    const Vec3<T> axis = cyl.p1 - cyl.p0;
+    const NormQuadratic<T> f{detail::cross(policy, ray.origin - cyl.p0, axis), detail::cross(policy, ray.direction, axis),
+                             cyl.radius * length(axis), T(0)};
+    const Spans<T> side = solve_quadratic(policy, f);
+    const detail::Slab<T> slab = detail::axial_slab(policy, ray, cyl.p0, cyl.p1, axis);
+    return cyl.caps == Caps::both ? detail::capped_crossings(side, slab) : detail::side_crossings_within(side, slab);
+}
+
+template <class T>
+inline Vec3<T> outward_normal(const Cylinder<T>& cyl, const Vec3<T>& p, Part part)
+{
+    const Vec3<T> axis = cyl.p1 - cyl.p0;
+    if (part == Part::cap0) return -axis;
+    if (part == Part::cap1) return axis;
+    const Vec3<T> q = p - cyl.p0;
+    return q - (dot(q, axis) / dot(axis, axis)) * axis;  // the radial component
+}
+
+}  // namespace rayq

@@ -1,0 +1,62 @@
+// rayq — the few arithmetic operations whose accuracy a precision policy decides.
+// Every primitive computes through these, so a policy is a choice made in one place.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "../policy.hpp"
+#include "../vec3.hpp"
+#include "eft.hpp"
+
+namespace rayq::detail {
+
+template <class Policy>
+inline constexpr bool compensated_v = std::is_same_v<Policy, accurate_policy>;
+
+template <class Policy, class T>
+inline T dot(Policy, const Vec3<T>& a, const Vec3<T>& b)
+{
+    if constexpr (compensated_v<Policy>) return dot_compensated(a, b);
+    else return rayq::dot(a, b);
+}
+
+template <class Policy, class T>
+inline Vec3<T> cross(Policy, const Vec3<T>& a, const Vec3<T>& b)
+{
+    if constexpr (compensated_v<Policy>) return cross_compensated(a, b);
+    else return rayq::cross(a, b);
+}
+
+// a·b + c, fused where the hardware fuses (one rounding instead of two), plain elsewhere.
+template <class T>
+inline T mul_add(T a, T b, T c)
+{
+#if defined(__FMA__) || defined(__FMA4__) || defined(__aarch64__) || defined(__ARM_FEATURE_FMA)
+    return std::fma(a, b, c);
+#else
+    return a * b + c;
+#endif
+}
+
+template <class Policy, class T>
+inline Vec3<T> point_at(Policy, const Vec3<T>& origin, const Vec3<T>& direction, T t)
+{
+    if constexpr (compensated_v<Policy>)
+        return {mul_add(t, direction.x, origin.x), mul_add(t, direction.y, origin.y), mul_add(t, direction.z, origin.z)};
+    else return origin + t * direction;
+}
+
+// Unit vector along v, scaled by its largest component first so that neither tiny nor huge
+// vectors under- or overflow in the squared length. Returns {0,0,0} for a zero or non-finite v.
+template <class T>
+inline Vec3<T> unit(const Vec3<T>& v)
+{
+    const T m = std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+    if (!(m > T(0)) || !(m <= std::numeric_limits<T>::max())) return {T(0), T(0), T(0)};
+    const Vec3<T> s = v / m;
+    return s / std::sqrt(rayq::dot(s, s));
+}
+
+}  // namespace rayq::detail

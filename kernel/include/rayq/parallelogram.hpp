@@ -1,0 +1,43 @@
+// rayq — parallelogram: corner + α·edge0 + β·edge1 for α, β in [0, 1]; the front side is the
+// one edge0 × edge1 points to (the design notes' square and rectangle).
+#pragma once
+
+#include "detail/flat.hpp"
+#include "query.hpp"
+#include "validation.hpp"
+
+namespace rayq {
+
+template <class T>
+struct Parallelogram {
+    using scalar_type = T;
+    Vec3<T> corner;
+    Vec3<T> edge0, edge1;
+};
+
+template <class T>
+struct is_primitive<Parallelogram<T>> : std::true_type {};
+
+template <class T>
+inline Validation validate(const Parallelogram<T>& p)
+{
+    return detail::Validator{}
+        .finite(p.corner, "Parallelogram: corner is NaN or infinite")
+        .finite(p.edge0, "Parallelogram: edge0 is NaN or infinite")
+        .finite(p.edge1, "Parallelogram: edge1 is NaN or infinite")
+        .nonzero(cross(p.edge0, p.edge1), "Parallelogram: edges are parallel or zero (no area)",
+                 "Parallelogram: edges are too long for the number type", Defect::degenerate)
+        .result();
+}
+
+template <class Policy, class T>
+inline Crossings<T> crossings(Policy policy, const Ray<T>& ray, const Parallelogram<T>& p)
+{
+    const auto pc = detail::planar_coordinates(policy, ray, p.corner, p.edge0, p.edge1);
+    return detail::flat_crossing(pc, detail::within(pc.alpha, pc.det, true) && detail::within(pc.beta, pc.det, true));
+}
+
+template <class T>
+inline Vec3<T> outward_normal(const Parallelogram<T>& p, const Vec3<T>&, Part) { return cross(p.edge0, p.edge1); }
+
+}  // namespace rayq

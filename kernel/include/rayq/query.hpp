@@ -1,0 +1,148 @@
+// rayq — the queries every primitive answers: intersect (closest hit), occluded (any hit),
+// intersect_all (every crossing).
+//
+// A primitive header supplies three things, found by argument-dependent lookup:
+//   crossings(policy, ray, prim)        the surface crossings along the ray's line, ascending,
+//                                       each with its part and whether the ray enters the solid;
+//   outward_normal(prim, point, part)   the outward normal (any length) at a hit point;
+//   validate(prim)                      whether the primitive is usable;
+// and specializes is_primitive. The queries below are written once for all of them: the
+// cheap core (crossings) is shared, and only intersect() builds the full hit record.
+#pragma once
+
+#include <optional>
+#include <type_traits>
+
+#include "detail/policy_ops.hpp"
+#include "hit.hpp"
+#include "policy.hpp"
+#include "ray.hpp"
+#include "validation.hpp"
+#include "vec3.hpp"
+
+namespace rayq {
+
+template <class Prim>
+struct is_primitive : std::false_type {};
+template <class Prim>
+inline constexpr bool is_primitive_v = is_primitive<Prim>::value;
+
+template <class Prim>
+using scalar_t = typename Prim::scalar_type;
+
+template <class T>
+struct Crossing {
+    T t;
+    Part part;
+    bool entering;  // the ray passes from outside to inside here
+};
+
+// At most two: every primitive is a convex solid, a quadric surface or a flat piece.
+template <class T>
+struct Crossings {
+    int count = 0;
+    Crossing<T> item[2]{};
+
+    constexpr void add(T t, Part part, bool entering) { item[count++] = {t, part, entering}; }
+    constexpr const Crossing<T>* begin() const { return item; }
+    constexpr const Crossing<T>* end() const { return item + count; }
+};
+
+namespace detail {
+
+template <class T>
+constexpr bool in_window(const Ray<T>& ray, T t) { return ray.tmin < t && t < ray.tmax; }
+
+template <class Policy, class Prim>
+inline Hit<scalar_t<Prim>> make_hit(Policy policy, const Ray<scalar_t<Prim>>& ray, const Prim& prim,
+                                     const Crossing<scalar_t<Prim>>& c)
+{
+    using T = scalar_t<Prim>;
+    const Vec3<T> p = detail::point_at(policy, ray.origin, ray.direction, c.t);
+    Vec3<T> n = unit(outward_normal(prim, p, c.part));
+    // A point rounded onto a degenerate spot (the center of a far sphere whose t the fast policy
+    // got wrong, a cone's apex) has no normal; the record still promises a unit one facing the ray.
+    if (n.x == T(0) && n.y == T(0) && n.z == T(0)) n = -unit(ray.direction);
+    // Face the incoming ray. front_face comes from the crossing's root order instead, which
+    // stays right at grazing incidence where the sign of this dot product is noise.
+    if (rayq::dot(n, ray.direction) > T(0)) n = -n;
+    return {c.t, p, n, c.entering, c.part};
+}
+
+template <class Prim>
+inline bool accepts(const Ray<scalar_t<Prim>>& ray, const Prim& prim)
+{
+    return usable(ray) && static_cast<bool>(validate(prim));
+}
+
+}  // namespace detail
+
+template <class Policy, class Prim, std::enable_if_t<is_policy_v<Policy> && is_primitive_v<Prim>, int> = 0>
+inline std::optional<Hit<scalar_t<Prim>>> intersect(Policy policy, const Ray<scalar_t<Prim>>& ray, const Prim& prim)
+{
+    if (!detail::accepts(ray, prim)) return std::nullopt;
+    for (const auto& c : crossings(policy, ray, prim))
+        if (detail::in_window(ray, c.t)) return detail::make_hit(policy, ray, prim, c);
+    return std::nullopt;
+}
+
+template <class Policy, class Prim, std::enable_if_t<is_policy_v<Policy> && is_primitive_v<Prim>, int> = 0>
+inline bool occluded(Policy policy, const Ray<scalar_t<Prim>>& ray, const Prim& prim)
+{
+    if (!detail::accepts(ray, prim)) return false;
+    for (const auto& c : crossings(policy, ray, prim))
+        if (detail::in_window(ray, c.t)) return true;
+    return false;
+}
+
+// One boundary crossing along the ray: the hit record and whether the ray enters the solid there
+// (for flat primitives: whether it meets the front side).
+template <class T>
+struct Passage {
+    Hit<T> hit;
+    bool entering;
+};
+
+// Every crossing in (tmin, tmax), ascending in t — for CSG, thickness along a ray, volume
+// integration. Fixed capacity (no allocation): no primitive has more than two.
+template <class T>
+struct Passages {
+    int count = 0;
+    Passage<T> item[2]{};
+
+    constexpr int size() const { return count; }
+    constexpr bool empty() const { return count == 0; }
+    constexpr const Passage<T>& operator[](int i) const { return item[i]; }
+    constexpr const Passage<T>* begin() const { return item; }
+    constexpr const Passage<T>* end() const { return item + count; }
+};
+
+template <class Policy, class Prim, std::enable_if_t<is_policy_v<Policy> && is_primitive_v<Prim>, int> = 0>
+inline Passages<scalar_t<Prim>> intersect_all(Policy policy, const Ray<scalar_t<Prim>>& ray, const Prim& prim)
+{
+    Passages<scalar_t<Prim>> out;
+    if (!detail::accepts(ray, prim)) return out;
+    for (const auto& c : crossings(policy, ray, prim))
+        if (detail::in_window(ray, c.t)) out.item[out.count++] = {detail::make_hit(policy, ray, prim, c), c.entering};
+    return out;
+}
+
+template <class Prim, std::enable_if_t<is_primitive_v<Prim>, int> = 0>
+inline Passages<scalar_t<Prim>> intersect_all(const Ray<scalar_t<Prim>>& ray, const Prim& prim)
+{
+    return intersect_all(default_policy{}, ray, prim);
+}
+
+template <class Prim, std::enable_if_t<is_primitive_v<Prim>, int> = 0>
+inline std::optional<Hit<scalar_t<Prim>>> intersect(const Ray<scalar_t<Prim>>& ray, const Prim& prim)
+{
+    return intersect(default_policy{}, ray, prim);
+}
+
+template <class Prim, std::enable_if_t<is_primitive_v<Prim>, int> = 0>
+inline bool occluded(const Ray<scalar_t<Prim>>& ray, const Prim& prim)
+{
+    return occluded(default_policy{}, ray, prim);
+}
+
+}  // namespace rayq

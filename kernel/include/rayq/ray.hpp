@@ -1,0 +1,33 @@
+// rayq — rays: point(t) = origin + t·direction, hits count for tmin < t < tmax.
+#pragma once
+
+#include <limits>
+
+#include "vec3.hpp"
+
+namespace rayq {
+
+template <class T>
+struct Ray {
+    Vec3<T> origin;
+    Vec3<T> direction;  // need not be unit length; t is measured in units of it
+    T tmin = T(0);
+    T tmax = std::numeric_limits<T>::infinity();
+};
+
+template <class T>
+constexpr Vec3<T> point_at(const Ray<T>& ray, T t) { return ray.origin + t * ray.direction; }
+
+// A ray can hit something only when its origin and direction are finite, |direction|² is a
+// normal number (zero-length and underflowing directions carry no usable direction), and the
+// window (tmin, tmax) is a non-empty interval (NaN bounds fail the comparison).
+template <class T>
+inline bool usable(const Ray<T>& ray)
+{
+    if (!isfinite(ray.origin) || !isfinite(ray.direction)) return false;
+    const T dd = length_squared(ray.direction);
+    if (!(dd >= std::numeric_limits<T>::min()) || !(dd <= std::numeric_limits<T>::max())) return false;
+    return ray.tmin < ray.tmax;
+}
+
+}  // namespace rayq

@@ -1,0 +1,146 @@
+// rayq — a primitive placed in the world by an affine object-to-world map (3×4), stored with
+// its inverse. Rays go into object space unnormalized, so t is the world ray's parameter.
+#pragma once
+
+#include <cmath>
+
+#include "detail/policy_ops.hpp"
+#include "query.hpp"
+#include "validation.hpp"
+
+namespace rayq {
+
+// p ↦ L·p + t, stored row-major as [L | t].
+template <class T>
+struct Affine3 {
+    T m[3][4];
+
+    static constexpr Affine3 identity() { return {{{T(1), T(0), T(0), T(0)}, {T(0), T(1), T(0), T(0)}, {T(0), T(0), T(1), T(0)}}}; }
+    static constexpr Affine3 translation(const Vec3<T>& t)
+    {
+        return {{{T(1), T(0), T(0), t.x}, {T(0), T(1), T(0), t.y}, {T(0), T(0), T(1), t.z}}};
+    }
+    static constexpr Affine3 scaling(const Vec3<T>& s)
+    {
+        return {{{s.x, T(0), T(0), T(0)}, {T(0), s.y, T(0), T(0)}, {T(0), T(0), s.z, T(0)}}};
+    }
+    // Rotation by `angle` radians about `axis` (Rodrigues), then translation by `t`.
+    static Affine3 rotation(const Vec3<T>& axis, T angle, const Vec3<T>& t = {T(0), T(0), T(0)})
+    {
+        const Vec3<T> k = detail::unit(axis);
+        const T c = std::cos(angle), s = std::sin(angle), v = T(1) - c;
+        return {{{c + k.x * k.x * v, k.x * k.y * v - k.z * s, k.x * k.z * v + k.y * s, t.x},
+                 {k.y * k.x * v + k.z * s, c + k.y * k.y * v, k.y * k.z * v - k.x * s, t.y},
+                 {k.z * k.x * v - k.y * s, k.z * k.y * v + k.x * s, c + k.z * k.z * v, t.z}}};
+    }
+
+    constexpr Vec3<T> linear(const Vec3<T>& v) const
+    {
+        return {m[0][0] * v.x + m[0][1] * v.y + m[0][2] * v.z, m[1][0] * v.x + m[1][1] * v.y + m[1][2] * v.z,
+                m[2][0] * v.x + m[2][1] * v.y + m[2][2] * v.z};
+    }
+    // Lᵀ·v: with L the inverse's linear part, this carries normals (the inverse transpose).
+    constexpr Vec3<T> linear_transposed(const Vec3<T>& v) const
+    {
+        return {m[0][0] * v.x + m[1][0] * v.y + m[2][0] * v.z, m[0][1] * v.x + m[1][1] * v.y + m[2][1] * v.z,
+                m[0][2] * v.x + m[1][2] * v.y + m[2][2] * v.z};
+    }
+    constexpr Vec3<T> point(const Vec3<T>& p) const { return linear(p) + Vec3<T>{m[0][3], m[1][3], m[2][3]}; }
+
+    constexpr T determinant() const
+    {
+        return m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+               m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+    }
+
+    // The inverse map by the adjugate; entries are NaN/Inf when the linear part is singular.
+    Affine3 inverse() const
+    {
+        const T inv_det = T(1) / determinant();
+        Affine3 r{};
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) {
+                const int i1 = (j + 1) % 3, i2 = (j + 2) % 3, j1 = (i + 1) % 3, j2 = (i + 2) % 3;
+                r.m[i][j] = (m[i1][j1] * m[i2][j2] - m[i1][j2] * m[i2][j1]) * inv_det;
+            }
+        const Vec3<T> t = r.linear(Vec3<T>{m[0][3], m[1][3], m[2][3]});
+        r.m[0][3] = -t.x;
+        r.m[1][3] = -t.y;
+        r.m[2][3] = -t.z;
+        return r;
+    }
+
+    // Composition: (a * b)(p) = a(b(p)).
+    friend constexpr Affine3 operator*(const Affine3& a, const Affine3& b)
+    {
+        Affine3 r{};
+        for (int i = 0; i < 3; ++i) {
+            for (int j = 0; j < 4; ++j) {
+                T s = j == 3 ? a.m[i][3] : T(0);
+                for (int k = 0; k < 3; ++k) s += a.m[i][k] * b.m[k][j];
+                r.m[i][j] = s;
+            }
+        }
+        return r;
+    }
+};
+
+template <class Prim, class T = scalar_t<Prim>>
+struct Transformed {
+    using scalar_type = T;
+    Prim object;
+    Affine3<T> to_world;
+    Affine3<T> to_object;  // to_world's inverse
+
+    static Transformed place(const Prim& object, const Affine3<T>& to_world) { return {object, to_world, to_world.inverse()}; }
+};
+
+template <class Prim>
+Transformed<Prim> transformed(const Prim& object, const Affine3<scalar_t<Prim>>& to_world)
+{
+    return Transformed<Prim>::place(object, to_world);
+}
+
+template <class Prim, class T>
+struct is_primitive<Transformed<Prim, T>> : std::bool_constant<is_primitive_v<Prim>> {};
+
+template <class Prim, class T>
+inline Validation validate(const Transformed<Prim, T>& x)
+{
+    const Validation inner = validate(x.object);
+    if (!inner) return inner;
+    bool finite = true;
+    for (const auto* a : {&x.to_world, &x.to_object})
+        for (const auto& row : a->m)
+            for (T v : row) finite = finite && std::isfinite(v);
+    // Singular when the determinant is negligible against the product of the column lengths
+    // (Hadamard's bound, |det| <= ∏|colᵢ|): a scale-free test.
+    const auto& m = x.to_world.m;
+    const T hadamard = length(Vec3<T>{m[0][0], m[1][0], m[2][0]}) * length(Vec3<T>{m[0][1], m[1][1], m[2][1]}) *
+                       length(Vec3<T>{m[0][2], m[1][2], m[2][2]});
+    const T det = x.to_world.determinant();
+    return detail::Validator{}
+        .require(finite, Defect::non_finite, "Transformed: a matrix entry is NaN or infinite (or the map is singular)")
+        .require(std::abs(det) > T(64) * std::numeric_limits<T>::epsilon() * hadamard, Defect::degenerate,
+                 "Transformed: to_world is singular (determinant ~ 0)")
+        .result();
+}
+
+// The object sees origin' = W⁻¹·o and direction' = L⁻¹·d, and the same t and window.
+template <class Policy, class Prim, class T>
+inline Crossings<T> crossings(Policy policy, const Ray<T>& ray, const Transformed<Prim, T>& x)
+{
+    const Ray<T> local{x.to_object.point(ray.origin), x.to_object.linear(ray.direction), ray.tmin, ray.tmax};
+    return crossings(policy, local, x.object);
+}
+
+// Normals go back through the inverse transpose; the entering flag needs no change, since an
+// affine bijection maps the solid's inside to the inside.
+template <class Prim, class T>
+inline Vec3<T> outward_normal(const Transformed<Prim, T>& x, const Vec3<T>& p, Part part)
+{
+    const Vec3<T> n = detail::unit(outward_normal(x.object, x.to_object.point(p), part));
+    return x.to_object.linear_transposed(n);
+}
+
+}  // namespace rayq

@@ -1,0 +1,44 @@
+// rayq — triangle a, b, c; the front side is the one (b − a) × (c − a) points to
+// (counter-clockwise seen from the front, the right-hand rule).
+#pragma once
+
+#include "detail/flat.hpp"
+#include "query.hpp"
+#include "validation.hpp"
+
+namespace rayq {
+
+template <class T>
+struct Triangle {
+    using scalar_type = T;
+    Vec3<T> a, b, c;
+};
+
+template <class T>
+struct is_primitive<Triangle<T>> : std::true_type {};
+
+template <class T>
+inline Validation validate(const Triangle<T>& tri)
+{
+    return detail::Validator{}
+        .finite(tri.a, "Triangle: vertex a is NaN or infinite")
+        .finite(tri.b, "Triangle: vertex b is NaN or infinite")
+        .finite(tri.c, "Triangle: vertex c is NaN or infinite")
+        .nonzero(cross(tri.b - tri.a, tri.c - tri.a), "Triangle: vertices are collinear or coincide (no area)",
+                 "Triangle: edges are too long for the number type", Defect::degenerate)
+        .result();
+}
+
+template <class Policy, class T>
+inline Crossings<T> crossings(Policy policy, const Ray<T>& ray, const Triangle<T>& tri)
+{
+    const auto pc = detail::planar_coordinates(policy, ray, tri.a, tri.b - tri.a, tri.c - tri.a);
+    const bool inside = detail::within(pc.alpha, pc.det, false) && detail::within(pc.beta, pc.det, false) &&
+                        detail::within(pc.alpha + pc.beta, pc.det, true);
+    return detail::flat_crossing(pc, inside);
+}
+
+template <class T>
+inline Vec3<T> outward_normal(const Triangle<T>& tri, const Vec3<T>&, Part) { return cross(tri.b - tri.a, tri.c - tri.a); }
+
+}  // namespace rayq

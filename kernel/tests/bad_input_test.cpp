@@ -1,0 +1,102 @@
+// Bad input never hits and never invokes undefined behaviour (run under UBSan/ASan too).
+#include "test_support.hpp"
+
+#include <vector>
+
+namespace rayq::test {
+namespace {
+
+template <class C>
+class BadInputTest : public ::testing::Test {};
+TYPED_TEST_SUITE(BadInputTest, AllConfigs, ConfigNames);
+
+// One valid instance of every primitive, all straddling the z axis near the origin so that the
+// good ray below hits each of them.
+template <class T, class F>
+void for_each_primitive(F&& f)
+{
+    f(Sphere<T>{v3<T>(0, 0, 0), T(1)});
+    f(Plane<T>{v3<T>(0, 0, 0), v3<T>(0, 0, 1)});
+    f(Disk<T>{v3<T>(0, 0, 0), v3<T>(0, 0, 1), T(1)});
+    f(Parallelogram<T>{v3<T>(-1, -1, 0), v3<T>(2, 0, 0), v3<T>(0, 2, 0)});
+    f(Triangle<T>{v3<T>(-1, -1, 0), v3<T>(2, -1, 0), v3<T>(-1, 2, 0)});
+    f(Cylinder<T>{v3<T>(0, 0, -1), v3<T>(0, 0, 1), T(1), Caps::both});
+    f(Cylinder<T>{v3<T>(-2, 0, 0), v3<T>(2, 0, 0), T(1), Caps::none});
+}
+
+TYPED_TEST(BadInputTest, GoodRayHitsEveryPrimitive)
+{
+    using T = typename TypeParam::T;
+    for_each_primitive<T>([](const auto& prim) {
+        EXPECT_TRUE(validate(prim));
+        EXPECT_TRUE(checked_intersect(TypeParam::policy, ray(v3<T>(0.25, 0.25, 5), v3<T>(0, 0, -1)), prim));
+    });
+}
+
+TYPED_TEST(BadInputTest, NonFiniteOrEmptyRaysNeverHit)
+{
+    using T = typename TypeParam::T;
+    constexpr T nan = std::numeric_limits<T>::quiet_NaN(), inf = std::numeric_limits<T>::infinity();
+    const T tiny = std::numeric_limits<T>::denorm_min();
+    const auto o = v3<T>(0.25, 0.25, 5), d = v3<T>(0, 0, -1);
+    const std::vector<Ray<T>> bad = {
+        ray(Vec3<T>{nan, T(0), T(5)}, d),
+        ray(Vec3<T>{T(0), inf, T(5)}, d),
+        ray(o, Vec3<T>{T(0), T(0), nan}),
+        ray(o, Vec3<T>{T(0), T(0), -inf}),
+        ray(o, Vec3<T>{T(0), T(0), T(0)}),           // zero-length direction
+        ray(o, Vec3<T>{T(0), T(0), -tiny}),          // |d|² underflows: no usable direction
+        ray(o, d, T(3), T(3)),                       // empty window
+        ray(o, d, T(6), T(2)),                       // reversed window
+        ray(o, d, nan, T(10)),
+        ray(o, d, T(0), nan),
+    };
+    for_each_primitive<T>([&](const auto& prim) {
+        for (const auto& r : bad) {
+            EXPECT_FALSE(intersect(TypeParam::policy, r, prim));
+            EXPECT_FALSE(occluded(TypeParam::policy, r, prim));
+        }
+    });
+}
+
+TYPED_TEST(BadInputTest, InvalidPrimitivesNeverHit)
+{
+    using T = typename TypeParam::T;
+    constexpr T nan = std::numeric_limits<T>::quiet_NaN(), inf = std::numeric_limits<T>::infinity();
+    const auto r = ray(v3<T>(0.25, 0.25, 5), v3<T>(0, 0, -1));
+    const auto z = v3<T>(0, 0, 0);
+    const auto expect_no_hit = [&](const auto& prim) {
+        EXPECT_FALSE(validate(prim));
+        EXPECT_FALSE(intersect(TypeParam::policy, r, prim));
+        EXPECT_FALSE(occluded(TypeParam::policy, r, prim));
+    };
+    expect_no_hit(Sphere<T>{z, T(0)});
+    expect_no_hit(Sphere<T>{z, T(-1)});
+    expect_no_hit(Sphere<T>{z, nan});
+    expect_no_hit(Sphere<T>{Vec3<T>{nan, T(0), T(0)}, T(1)});
+    expect_no_hit(Plane<T>{z, z});
+    expect_no_hit(Plane<T>{z, Vec3<T>{T(0), T(0), inf}});
+    expect_no_hit(Disk<T>{z, v3<T>(0, 0, 1), T(-2)});
+    expect_no_hit(Disk<T>{z, z, T(1)});
+    expect_no_hit(Parallelogram<T>{v3<T>(-1, -1, 0), v3<T>(2, 0, 0), v3<T>(4, 0, 0)});  // collinear edges
+    expect_no_hit(Triangle<T>{v3<T>(-1, -1, 0), v3<T>(1, 1, 0), v3<T>(3, 3, 0)});        // collinear vertices
+    expect_no_hit(Triangle<T>{v3<T>(-1, -1, 0), v3<T>(-1, -1, 0), v3<T>(3, 3, 0)});      // repeated vertex
+    expect_no_hit(Cylinder<T>{v3<T>(0, 0, 1), v3<T>(0, 0, 1), T(1), Caps::both});          // zero axis
+    expect_no_hit(Cylinder<T>{v3<T>(0, 0, -1), v3<T>(0, 0, 1), T(0), Caps::both});
+    expect_no_hit(Cylinder<T>{v3<T>(0, 0, -1), v3<T>(0, 0, nan), T(1), Caps::both});
+}
+
+TYPED_TEST(BadInputTest, HugeButFiniteInputsGiveFiniteAnswersOrNone)
+{
+    using T = typename TypeParam::T;
+    const T big = std::numeric_limits<T>::max() / T(4);
+    const auto r = ray(Vec3<T>{big, -big, big}, Vec3<T>{-big, big, -big});
+    for_each_primitive<T>([&](const auto& prim) {
+        if (const auto h = intersect(TypeParam::policy, r, prim)) expect_well_formed(r, *h);
+    });
+    const Sphere<T> huge{Vec3<T>{T(0), T(0), T(0)}, big};
+    if (const auto h = intersect(TypeParam::policy, ray(v3<T>(0, 0, 0), v3<T>(1, 0, 0)), huge)) expect_well_formed(r, *h);
+}
+
+}  // namespace
+}  // namespace rayq::test

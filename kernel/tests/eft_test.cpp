@@ -1,0 +1,72 @@
+// Error-free transformations: checked against long double / exact rational reasoning.
+#include "test_support.hpp"
+
+#include <random>
+
+namespace rayq::test {
+namespace {
+
+__extension__ typedef __float128 quad;  // GCC/Clang binary128: the exact reference
+
+TEST(ErrorFreeTransformations, TwoProductIsExact)
+{
+    std::mt19937_64 rng(20261122);
+    std::uniform_real_distribution<double> u(-1e3, 1e3);
+    for (int i = 0; i < 10000; ++i) {
+        const float a = float(u(rng)), b = float(u(rng));
+        const auto p = detail::two_product(a, b);
+        EXPECT_EQ((double)p.hi + (double)p.lo, (double)a * (double)b);  // float products are exact in double
+        const double x = u(rng), y = u(rng);
+        const auto q = detail::two_product(x, y);
+        EXPECT_EQ(q.hi, x * y);
+        EXPECT_EQ(q.lo, std::fma(x, y, -q.hi));  // libm's fma is exact; the kernel may use Dekker's split instead
+    }
+}
+
+TEST(ErrorFreeTransformations, TwoSumIsExact)
+{
+    const auto s = detail::two_sum(1.0, 1e-20);
+    EXPECT_EQ(s.hi, 1.0);
+    EXPECT_EQ(s.lo, 1e-20);
+    const auto f = detail::two_sum(16777216.0f, 1.0f);
+    EXPECT_EQ(f.hi, 16777216.0f);
+    EXPECT_EQ(f.lo, 1.0f);
+}
+
+TEST(ErrorFreeTransformations, DifferenceOfProductsBeatsNaive)
+{
+    // a·b = 1 + 2^-11 + 2^-24 needs 25 bits; c·d = 1 + 2^-11. The difference is 2^-24.
+    const float a = 1.0f + 0x1p-12f, b = a, c = 1.0f + 0x1p-11f, d = 1.0f;
+    const double exact = double(a) * b - double(c) * d;  // float products are exact in double
+    EXPECT_EQ(detail::difference_of_products(a, b, c, d), float(exact));
+    EXPECT_NE(a * b - c * d, float(exact));  // the naive form rounds a·b to 1 first
+    // Antisymmetric, exactly.
+    EXPECT_EQ(detail::difference_of_products(c, d, a, b), -detail::difference_of_products(a, b, c, d));
+}
+
+// Dot2's bound (Ogita, Rump, Oishi 2005, Prop. 5.5): |dot2 − exact| <= u·|exact| + γ(n)²·Σ|aᵢbᵢ|,
+// with u = 2^-24 and γ(n) = n·u/(1 − n·u): as if computed in twice the precision, then rounded.
+TEST(ErrorFreeTransformations, CompensatedDotMeetsTwicePrecisionBound)
+{
+    std::mt19937_64 rng(7);
+    std::uniform_real_distribution<double> u(-1, 1);
+    const double unit = 0x1p-24, g3 = 3 * unit / (1 - 3 * unit);
+    int naive_outside = 0;
+    for (int i = 0; i < 20000; ++i) {
+        // Nearly orthogonal vectors: heavy cancellation.
+        const Vec3<float> a{float(u(rng)), float(u(rng)), float(u(rng))};
+        Vec3<float> b{float(u(rng)), float(u(rng)), 0.0f};
+        b.z = a.z != 0 ? float(-(double(a.x) * b.x + double(a.y) * b.y) / a.z) : 0.0f;
+        // Float products are exact in double; their sum is exact in binary128.
+        const quad exact = quad(double(a.x) * b.x) + quad(double(a.y) * b.y) + quad(double(a.z) * b.z);
+        const double magnitude = std::fabs(double(a.x) * b.x) + std::fabs(double(a.y) * b.y) + std::fabs(double(a.z) * b.z);
+        const double bound = unit * std::fabs(double(exact)) + g3 * g3 * magnitude;
+        const float got = detail::dot_compensated(a, b);
+        EXPECT_LE(std::fabs(double(quad(got) - exact)), bound) << got << " vs " << double(exact);
+        naive_outside += std::fabs(double(quad(dot(a, b)) - exact)) > bound;
+    }
+    EXPECT_GT(naive_outside, 1000);  // the case the compensated form exists for
+}
+
+}  // namespace
+}  // namespace rayq::test

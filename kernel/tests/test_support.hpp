@@ -1,0 +1,67 @@
+// Shared by the kernel tests: the float/double × policy grid and small helpers.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <string>
+
+#include <rayq/rayq.hpp>
+
+namespace rayq::test {
+
+template <class T_, class Policy_>
+struct Config {
+    using T = T_;
+    using Policy = Policy_;
+    static constexpr Policy policy{};
+};
+
+using AllConfigs = ::testing::Types<Config<float, fast_policy>, Config<float, stable_policy>, Config<float, accurate_policy>,
+                                    Config<double, fast_policy>, Config<double, stable_policy>, Config<double, accurate_policy>>;
+
+struct ConfigNames {
+    template <class C>
+    static std::string GetName(int)
+    {
+        std::string t = std::is_same_v<typename C::T, float> ? "float" : "double";
+        if (std::is_same_v<typename C::Policy, fast_policy>) return t + "_fast";
+        if (std::is_same_v<typename C::Policy, stable_policy>) return t + "_stable";
+        return t + "_accurate";
+    }
+};
+
+template <class T>
+Vec3<T> v3(double x, double y, double z) { return {T(x), T(y), T(z)}; }
+
+template <class T>
+Ray<T> ray(Vec3<T> o, Vec3<T> d, T tmin = T(0), T tmax = std::numeric_limits<T>::infinity()) { return {o, d, tmin, tmax}; }
+
+// Tolerance for analytic checks: a few ulps of the problem's scale.
+template <class T>
+T tol(double scale = 1.0) { return T(16) * std::numeric_limits<T>::epsilon() * T(scale); }
+
+// The invariants every hit must satisfy, whatever the primitive.
+template <class T>
+void expect_well_formed(const Ray<T>& r, const Hit<T>& h)
+{
+    EXPECT_TRUE(std::isfinite(h.t));
+    EXPECT_GT(h.t, r.tmin);
+    EXPECT_LT(h.t, r.tmax);
+    EXPECT_NEAR(double(length(h.normal)), 1.0, 1e-5);
+    EXPECT_LE(double(dot(h.normal, r.direction)), 0.0);
+}
+
+// intersect() and occluded() agree, and a hit is well formed.
+template <class Policy, class Prim>
+std::optional<Hit<scalar_t<Prim>>> checked_intersect(Policy p, const Ray<scalar_t<Prim>>& r, const Prim& prim)
+{
+    auto h = intersect(p, r, prim);
+    EXPECT_EQ(h.has_value(), occluded(p, r, prim));
+    if (h) expect_well_formed(r, *h);
+    return h;
+}
+
+}  // namespace rayq::test

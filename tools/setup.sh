@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# Installs the Debian packages rayq's build, tests and tools need, and nothing when they are
+# all present (idempotent). Debian bookworm, run as root (or with sudo available).
+set -euo pipefail
+
+packages=(
+  cmake ninja-build g++ pkg-config   # build
+  libgtest-dev                       # kernel tests
+  libbenchmark-dev                   # benchmarks (tools/bench)
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+[ ${#missing[@]} -eq 0 ] && exit 0
+
+echo "rayq setup: installing ${missing[*]}" >&2
+sudo=""
+[ "$(id -u)" -eq 0 ] || sudo="sudo"
+export DEBIAN_FRONTEND=noninteractive
+$sudo apt-get update -qq
+$sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
