@@ -7,6 +7,8 @@ packages=(
   cmake ninja-build g++ pkg-config   # build
   libgtest-dev                       # kernel tests
   libbenchmark-dev                   # benchmarks (tools/bench)
+  libcgal-dev libgmp-dev libmpfr-dev libboost-dev   # validation/oracle: exact arithmetic
+  libopenmesh-dev libeigen3-dev      # validation/mesh: tessellations
 )
 
 missing=()

@@ -2,6 +2,7 @@
 // disks cap0 (at p0) and cap1 (at p1).
 #pragma once
 
+#include "detail/bounded.hpp"
 #include "detail/policy_ops.hpp"
 #include "detail/spans.hpp"
 #include "quadratic.hpp"
@@ -55,6 +56,19 @@ inline Crossings<T> crossings(Policy policy, const Ray<T>& ray, const Cylinder<T
     const Spans<T> side = solve_quadratic(policy, f);
     const detail::Slab<T> slab = detail::axial_slab(policy, ray, cyl.p0, cyl.p1, axis);
     return cyl.caps == Caps::both ? detail::capped_crossings(side, slab) : detail::side_crossings_within(side, slab);
+}
+
+// The side |(q + t·d) × A|² − r²|A|², or the cap's plane, with certified bounds (for Hit::t_error).
+template <class T>
+inline detail::Residual<T> residual(const Cylinder<T>& cyl, const Vec3<detail::Bounded<T>>& o, const Vec3<detail::Bounded<T>>& d,
+                                    detail::Bounded<T> t, Part part)
+{
+    using B = detail::Bounded<T>;
+    const Vec3<B> axis = detail::exact(cyl.p1) - detail::exact(cyl.p0);
+    if (part != Part::surface) return detail::plane_residual(part == Part::cap0 ? cyl.p0 : cyl.p1, axis, o, d, t);
+    const Vec3<B> qa = cross(o - detail::exact(cyl.p0) + t * d, axis), da = cross(d, axis);
+    const B r{cyl.radius};
+    return {dot(qa, qa) - r * r * dot(axis, axis), B{T(2)} * dot(qa, da), dot(da, da)};
 }
 
 template <class T>

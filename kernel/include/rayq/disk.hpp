@@ -42,6 +42,14 @@ inline Crossings<T> crossings(Policy policy, const Ray<T>& ray, const Disk<T>& d
     return c;
 }
 
+// The supporting plane, with certified bounds (for Hit::t_error).
+template <class T>
+inline detail::Residual<T> residual(const Disk<T>& p, const Vec3<detail::Bounded<T>>& o, const Vec3<detail::Bounded<T>>& d,
+                                    detail::Bounded<T> t, Part)
+{
+    return detail::plane_residual(p.center, detail::exact(p.normal), o, d, t);
+}
+
 template <class T>
 inline Vec3<T> outward_normal(const Disk<T>& d, const Vec3<T>&, Part) { return d.normal; }
 

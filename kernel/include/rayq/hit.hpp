@@ -1,6 +1,8 @@
 // rayq — the hit record returned by intersect().
 #pragma once
 
+#include <limits>
+
 #include "vec3.hpp"
 
 namespace rayq {
@@ -16,6 +18,12 @@ struct Hit {
     Vec3<T> normal;   // unit, facing the incoming ray: dot(normal, direction) <= 0
     bool front_face;  // the ray arrives from outside (the side the outward normal points to)
     Part part;
+    // Certified: the exact intersection parameter of the (exactly represented) inputs lies in
+    // [t − t_error, t + t_error].
+    T t_error = std::numeric_limits<T>::infinity();
+    // Certified, per component: |point − exact point| (the exact point at the exact t).
+    Vec3<T> point_error = {std::numeric_limits<T>::infinity(), std::numeric_limits<T>::infinity(),
+                           std::numeric_limits<T>::infinity()};
 };
 
 }  // namespace rayq

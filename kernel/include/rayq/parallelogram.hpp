@@ -37,6 +37,14 @@ inline Crossings<T> crossings(Policy policy, const Ray<T>& ray, const Parallelog
     return detail::flat_crossing(pc, detail::within(pc.alpha, pc.det, true) && detail::within(pc.beta, pc.det, true));
 }
 
+// The supporting plane, with certified bounds (for Hit::t_error).
+template <class T>
+inline detail::Residual<T> residual(const Parallelogram<T>& p, const Vec3<detail::Bounded<T>>& o, const Vec3<detail::Bounded<T>>& d,
+                                    detail::Bounded<T> t, Part)
+{
+    return detail::plane_residual(p.corner, cross(detail::exact(p.edge0), detail::exact(p.edge1)), o, d, t);
+}
+
 template <class T>
 inline Vec3<T> outward_normal(const Parallelogram<T>& p, const Vec3<T>&, Part) { return cross(p.edge0, p.edge1); }
 

@@ -33,6 +33,14 @@ inline Crossings<T> crossings(Policy policy, const Ray<T>& ray, const Plane<T>& 
     return detail::plane_crossing(policy, ray, p.point, p.normal);
 }
 
+// The supporting plane, with certified bounds (for Hit::t_error).
+template <class T>
+inline detail::Residual<T> residual(const Plane<T>& p, const Vec3<detail::Bounded<T>>& o, const Vec3<detail::Bounded<T>>& d,
+                                    detail::Bounded<T> t, Part)
+{
+    return detail::plane_residual(p.point, detail::exact(p.normal), o, d, t);
+}
+
 template <class T>
 inline Vec3<T> outward_normal(const Plane<T>& p, const Vec3<T>&, Part) { return p.normal; }
 

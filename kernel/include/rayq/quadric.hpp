@@ -5,6 +5,7 @@
 
 #include <limits>
 
+#include "detail/bounded.hpp"
 #include "detail/eft.hpp"
 #include "detail/policy_ops.hpp"
 #include "detail/spans.hpp"
@@ -156,6 +157,22 @@ inline Crossings<T> crossings(Policy policy, const Ray<T>& ray, const Quadric<T>
     for (const auto& c : all)
         if (q.clip.contains(detail::point_at(policy, ray.origin, ray.direction, c.t))) out.add(c.t, c.part, c.entering);
     return out;
+}
+
+// F(o + t·d), ∇F·d and F₂(d), with certified bounds (for Hit::t_error).
+template <class T>
+inline detail::Residual<T> residual(const Quadric<T>& q, const Vec3<detail::Bounded<T>>& o, const Vec3<detail::Bounded<T>>& d,
+                                    detail::Bounded<T> t, Part)
+{
+    using B = detail::Bounded<T>;
+    const Vec3<B> p = o + t * d;
+    const B A{q.A}, Bc{q.B}, C{q.C}, D{q.D}, E{q.E}, F{q.F}, two{T(2)};
+    const B f = A * p.x * p.x + Bc * p.y * p.y + C * p.z * p.z + D * p.x * p.y + E * p.x * p.z + F * p.y * p.z + B{q.G} * p.x +
+                B{q.H} * p.y + B{q.I} * p.z + B{q.J};
+    const Vec3<B> grad{two * A * p.x + D * p.y + E * p.z + B{q.G}, two * Bc * p.y + D * p.x + F * p.z + B{q.H},
+                       two * C * p.z + E * p.x + F * p.y + B{q.I}};
+    const B a = A * d.x * d.x + Bc * d.y * d.y + C * d.z * d.z + D * d.x * d.y + E * d.x * d.z + F * d.y * d.z;
+    return {f, dot(grad, d), a};
 }
 
 template <class T>

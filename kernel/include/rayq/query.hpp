@@ -13,6 +13,7 @@
 #include <optional>
 #include <type_traits>
 
+#include "detail/bounded.hpp"
 #include "detail/policy_ops.hpp"
 #include "hit.hpp"
 #include "policy.hpp"
@@ -66,7 +67,15 @@ inline Hit<scalar_t<Prim>> make_hit(Policy policy, const Ray<scalar_t<Prim>>& ra
     // Face the incoming ray. front_face comes from the crossing's root order instead, which
     // stays right at grazing incidence where the sign of this dot product is noise.
     if (rayq::dot(n, ray.direction) > T(0)) n = -n;
-    return {c.t, p, n, c.entering, c.part};
+    // A posteriori, independent of how t was found: bounds on F(t), F'(t) and a certify how far
+    // the exact root can be (detail::certify_root). The point then errs by t_error·|d| plus the
+    // rounding of o + t·d (at most two roundings: γ(2)·(|o| + |t·d|), pbrt-v4 §6.8.5).
+    const T t_error = certify_root(residual(prim, exact(ray.origin), exact(ray.direction), Bounded<T>{c.t}, c.part));
+    const T g2 = T(2) * unit_roundoff<T> / (T(1) - T(2) * unit_roundoff<T>);
+    const auto axis_error = [&](T o, T d) { return grow(t_error * std::abs(d) + g2 * (std::abs(o) + std::abs(c.t * d))); };
+    const Vec3<T> point_error{axis_error(ray.origin.x, ray.direction.x), axis_error(ray.origin.y, ray.direction.y),
+                              axis_error(ray.origin.z, ray.direction.z)};
+    return {c.t, p, n, c.entering, c.part, t_error, point_error};
 }
 
 template <class Prim>

@@ -12,6 +12,7 @@
 #include "quadric.hpp"
 #include "query.hpp"
 #include "ray.hpp"
+#include "spawn.hpp"
 #include "sphere.hpp"
 #include "transformed.hpp"
 #include "triangle.hpp"

@@ -1,6 +1,7 @@
 // rayq — sphere: |p − center| = radius.
 #pragma once
 
+#include "detail/bounded.hpp"
 #include "detail/policy_ops.hpp"
 #include "detail/spans.hpp"
 #include "quadratic.hpp"
@@ -35,6 +36,17 @@ inline Crossings<T> crossings(Policy policy, const Ray<T>& ray, const Sphere<T>&
 {
     const NormQuadratic<T> f{ray.origin - s.center, ray.direction, s.radius, T(0)};
     return detail::crossings_of(solve_quadratic(policy, f));
+}
+
+// |o + t·d − c|² − r² with certified bounds (for Hit::t_error).
+template <class T>
+inline detail::Residual<T> residual(const Sphere<T>& s, const Vec3<detail::Bounded<T>>& o, const Vec3<detail::Bounded<T>>& d,
+                                    detail::Bounded<T> t, Part)
+{
+    using B = detail::Bounded<T>;
+    const Vec3<B> q = o - detail::exact(s.center) + t * d;
+    const B r{s.radius};
+    return {dot(q, q) - r * r, B{T(2)} * dot(q, d), dot(d, d)};
 }
 
 template <class T>

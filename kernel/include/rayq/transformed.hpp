@@ -3,7 +3,11 @@
 #pragma once
 
 #include <cmath>
+#include <limits>
 
+#include <algorithm>
+
+#include "detail/bounded.hpp"
 #include "detail/policy_ops.hpp"
 #include "query.hpp"
 #include "validation.hpp"
@@ -132,6 +136,59 @@ inline Crossings<T> crossings(Policy policy, const Ray<T>& ray, const Transforme
 {
     const Ray<T> local{x.to_object.point(ray.origin), x.to_object.linear(ray.direction), ray.tmin, ray.tmax};
     return crossings(policy, local, x.object);
+}
+
+namespace detail {
+
+// How far the stored inverse M may be from the exact W⁻¹, relative to the point it maps: with
+// E = I − M·W (homogeneous 4×4, last row 0, computed with certified bounds) W⁻¹ = (I − E)⁻¹·M,
+// so |W⁻¹x − M·x|∞ <= ‖E‖∞/(1 − ‖E‖∞) · ‖(M·x, w)‖∞ (w = 1 for points, 0 for directions).
+template <class T>
+inline T inverse_defect(const Affine3<T>& m, const Affine3<T>& w)
+{
+    using B = Bounded<T>;
+    T norm = T(0);
+    for (int i = 0; i < 3; ++i) {
+        T row = T(0);
+        for (int j = 0; j < 4; ++j) {
+            B mw = j == 3 ? B{m.m[i][3]} : B{T(0)};
+            for (int k = 0; k < 3; ++k) mw += B{m.m[i][k]} * B{w.m[k][j]};
+            row = grow(row + upper(B{i == j ? T(1) : T(0)} - mw));
+        }
+        norm = std::max(norm, row);
+    }
+    if (!(norm < T(0.5))) return std::numeric_limits<T>::infinity();
+    return grow(norm / ((T(1) - norm) * (T(1) - T(2) * unit_roundoff<T>)));
+}
+
+template <class T>
+inline Vec3<Bounded<T>> map_bounded(const Affine3<T>& m, const Vec3<Bounded<T>>& v, bool point, T defect)
+{
+    using B = Bounded<T>;
+    B r[3];
+    const B x[3] = {v.x, v.y, v.z};
+    T largest = point ? T(1) : T(0);
+    for (int i = 0; i < 3; ++i) {
+        r[i] = point ? B{m.m[i][3]} : B{T(0)};
+        for (int k = 0; k < 3; ++k) r[i] += B{m.m[i][k]} * x[k];
+        largest = std::max(largest, upper(r[i]));
+    }
+    const T widen = grow(defect * largest);
+    for (B& c : r) c.e = grow(c.e + widen);
+    return {r[0], r[1], r[2]};
+}
+
+}  // namespace detail
+
+// The object's residual along the object-space ray, widened by the inverse's own error, so the
+// bound holds for the exact map to_world — the input — not only for the stored to_object.
+template <class Prim, class T>
+inline detail::Residual<T> residual(const Transformed<Prim, T>& x, const Vec3<detail::Bounded<T>>& o,
+                                    const Vec3<detail::Bounded<T>>& d, detail::Bounded<T> t, Part part)
+{
+    const T defect = detail::inverse_defect(x.to_object, x.to_world);
+    return residual(x.object, detail::map_bounded(x.to_object, o, true, defect), detail::map_bounded(x.to_object, d, false, defect), t,
+                    part);
 }
 
 // Normals go back through the inverse transpose; the entering flag needs no change, since an

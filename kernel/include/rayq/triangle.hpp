@@ -38,6 +38,14 @@ inline Crossings<T> crossings(Policy policy, const Ray<T>& ray, const Triangle<T
     return detail::flat_crossing(pc, inside);
 }
 
+// The supporting plane, with certified bounds (for Hit::t_error).
+template <class T>
+inline detail::Residual<T> residual(const Triangle<T>& p, const Vec3<detail::Bounded<T>>& o, const Vec3<detail::Bounded<T>>& d,
+                                    detail::Bounded<T> t, Part)
+{
+    return detail::plane_residual(p.a, cross(detail::exact(p.b) - detail::exact(p.a), detail::exact(p.c) - detail::exact(p.a)), o, d, t);
+}
+
 template <class T>
 inline Vec3<T> outward_normal(const Triangle<T>& tri, const Vec3<T>&, Part) { return cross(tri.b - tri.a, tri.c - tri.a); }
 

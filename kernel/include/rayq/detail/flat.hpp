@@ -4,6 +4,7 @@
 #include "../hit.hpp"
 #include "../query.hpp"
 #include "../ray.hpp"
+#include "bounded.hpp"
 #include "policy_ops.hpp"
 
 namespace rayq::detail {

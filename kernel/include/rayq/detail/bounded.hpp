@@ -1,0 +1,88 @@
+// rayq — numbers that carry a certified bound on their distance from the exact value:
+// |exact − v| <= e. Running error analysis in the style of pbrt-v4 "Managing Rounding Error"
+// (§6.8: conservative bounds propagated through each operation), evaluated in the working
+// precision: each bound is computed with round-to-nearest and then inflated by 8 unit roundoffs
+// plus the smallest subnormal, which covers the rounding of the bound's own arithmetic
+// (≤ 4 roundings per operation) and gradual underflow.
+#pragma once
+
+#include <cmath>
+#include <limits>
+
+#include "../vec3.hpp"
+
+namespace rayq::detail {
+
+template <class T>
+struct Bounded {
+    T v;      // the computed value
+    T e = 0;  // |exact − v| <= e
+};
+
+template <class T>
+inline constexpr T unit_roundoff = std::numeric_limits<T>::epsilon() / 2;
+
+template <class T>
+inline T grow(T bound)
+{
+    return bound * (T(1) + T(8) * unit_roundoff<T>) + std::numeric_limits<T>::denorm_min();
+}
+
+template <class T> inline Bounded<T> operator+(Bounded<T> a, Bounded<T> b)
+{
+    const T v = a.v + b.v;
+    return {v, grow(a.e + b.e + unit_roundoff<T> * std::abs(v))};
+}
+template <class T> inline Bounded<T> operator-(Bounded<T> a, Bounded<T> b)
+{
+    const T v = a.v - b.v;
+    return {v, grow(a.e + b.e + unit_roundoff<T> * std::abs(v))};
+}
+template <class T> inline Bounded<T> operator-(Bounded<T> a) { return {-a.v, a.e}; }
+template <class T> inline Bounded<T> operator*(Bounded<T> a, Bounded<T> b)
+{
+    const T v = a.v * b.v;
+    return {v, grow(std::abs(a.v) * b.e + std::abs(b.v) * a.e + a.e * b.e + unit_roundoff<T> * std::abs(v))};
+}
+template <class T> inline Bounded<T>& operator+=(Bounded<T>& a, Bounded<T> b) { return a = a + b; }
+
+// Bounds of |x| over the values x may take.
+template <class T> inline T upper(Bounded<T> a) { return grow(std::abs(a.v) + a.e); }
+// (|v| − e) rounded toward zero: one rounding of relative size <= u, removed by (1 − 2u).
+template <class T> inline T lower(Bounded<T> a) { return (std::abs(a.v) - grow(a.e)) * (T(1) - T(2) * unit_roundoff<T>); }
+
+template <class T> inline Vec3<Bounded<T>> exact(const Vec3<T>& v) { return {{v.x}, {v.y}, {v.z}}; }
+
+// F(t), F'(t) and the leading coefficient a of a primitive's implicit function along the ray,
+// each with its bound: what certify_root needs.
+template <class T>
+struct Residual {
+    Bounded<T> f, df, a;
+};
+
+// A certified distance from t to the nearest root of the exact quadratic
+//   a·h² + F'(t)·h + F(t) = 0,   h = root − t,
+// given only bounds on the three exact coefficients. If |F'| >= D > 0 and D² >= 4·|a|max·|F|max
+// there is a real root with |h| <= 2|F|max/D (the smaller root of the quadratic in h, written in
+// the cancellation-free form 2F/(F' ± √…)). Otherwise, if |a| >= A > 0, every real root has
+// |h| <= |F'|max/A + √(|F|max/A) (Cauchy's bound). Otherwise no bound: +infinity.
+// The plane through `point` with normal n: F = (o + t·d − point)·n, linear.
+template <class T>
+inline Residual<T> plane_residual(const Vec3<T>& point, const Vec3<Bounded<T>>& n, const Vec3<Bounded<T>>& o,
+                                  const Vec3<Bounded<T>>& d, Bounded<T> t)
+{
+    return {dot(o - exact(point) + t * d, n), dot(d, n), Bounded<T>{T(0)}};
+}
+
+template <class T>
+inline T certify_root(const Residual<T>& r)
+{
+    const T f_max = upper(r.f), a_max = upper(r.a), d_min = lower(r.df);
+    if (d_min > T(0) && d_min * d_min * (T(1) - T(4) * unit_roundoff<T>) >= grow(T(4) * a_max * f_max))
+        return grow(T(2) * f_max / d_min);
+    const T a_min = lower(r.a);
+    if (a_min > T(0)) return grow(grow(upper(r.df) / a_min) + grow(std::sqrt(grow(f_max / a_min))));
+    return std::numeric_limits<T>::infinity();
+}
+
+}  // namespace rayq::detail
