@@ -4,6 +4,7 @@
 
 #include "cylinder.hpp"  // Caps
 #include "detail/bounded.hpp"
+#include "detail/exact_crossings.hpp"
 #include "detail/policy_ops.hpp"
 #include "detail/spans.hpp"
 #include "quadratic.hpp"
@@ -62,19 +63,25 @@ inline Crossings<T> crossings(Policy policy, const Ray<T>& ray, const Cone<T>& c
 
 // The side in rational form |(q + t·d) × A|²·|A|² − (r0·|A|² + (r1 − r0)·(q + t·d)·A)² (no square
 // root of |A|²), or the cap's plane, with certified bounds (for Hit::t_error).
-template <class T>
-inline detail::Residual<T> residual(const Cone<T>& cone, const Vec3<detail::Bounded<T>>& o, const Vec3<detail::Bounded<T>>& d,
-                                    detail::Bounded<T> t, Part part)
+template <class N, class T>
+inline detail::Residual<N> residual(const Cone<T>& cone, const Vec3<N>& o, const Vec3<N>& d, N t, Part part)
 {
-    using B = detail::Bounded<T>;
-    const Vec3<B> axis = detail::exact(cone.p1) - detail::exact(cone.p0);
+    using B = N;
+    const Vec3<B> axis = detail::lift<N>(cone.p1) - detail::lift<N>(cone.p0);
     if (part != Part::surface) return detail::plane_residual(part == Part::cap0 ? cone.p0 : cone.p1, axis, o, d, t);
-    const Vec3<B> q = o - detail::exact(cone.p0) + t * d;
+    const Vec3<B> q = o - detail::lift<N>(cone.p0) + t * d;
     const Vec3<B> qa = cross(q, axis), da = cross(d, axis);
     const B aa = dot(axis, axis), dr = B{cone.r1} - B{cone.r0};
     const B radius = B{cone.r0} * aa + dr * dot(q, axis);  // r(h)·|A|²
     const B slope = dr * dot(d, axis);                     // its derivative in t
     return {dot(qa, qa) * aa - radius * radius, B{T(2)} * (dot(qa, da) * aa - radius * slope), dot(da, da) * aa - slope * slope};
+}
+
+// Accurate: exact decisions, correctly rounded t (detail/exact_crossings.hpp).
+template <class T>
+inline Crossings<T> crossings(accurate_policy, const Ray<T>& ray, const Cone<T>& cone)
+{
+    return detail::exact_curved_crossings(ray, cone, true, cone.caps == Caps::both, {cone.r0 > T(0), cone.r1 > T(0)});
 }
 
 template <class T>

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "detail/bounded.hpp"
+#include "detail/exact_crossings.hpp"
 #include "detail/policy_ops.hpp"
 #include "detail/spans.hpp"
 #include "quadratic.hpp"
@@ -59,16 +60,22 @@ inline Crossings<T> crossings(Policy policy, const Ray<T>& ray, const Cylinder<T
 }
 
 // The side |(q + t·d) × A|² − r²|A|², or the cap's plane, with certified bounds (for Hit::t_error).
-template <class T>
-inline detail::Residual<T> residual(const Cylinder<T>& cyl, const Vec3<detail::Bounded<T>>& o, const Vec3<detail::Bounded<T>>& d,
-                                    detail::Bounded<T> t, Part part)
+template <class N, class T>
+inline detail::Residual<N> residual(const Cylinder<T>& cyl, const Vec3<N>& o, const Vec3<N>& d, N t, Part part)
 {
-    using B = detail::Bounded<T>;
-    const Vec3<B> axis = detail::exact(cyl.p1) - detail::exact(cyl.p0);
+    using B = N;
+    const Vec3<B> axis = detail::lift<N>(cyl.p1) - detail::lift<N>(cyl.p0);
     if (part != Part::surface) return detail::plane_residual(part == Part::cap0 ? cyl.p0 : cyl.p1, axis, o, d, t);
-    const Vec3<B> qa = cross(o - detail::exact(cyl.p0) + t * d, axis), da = cross(d, axis);
+    const Vec3<B> qa = cross(o - detail::lift<N>(cyl.p0) + t * d, axis), da = cross(d, axis);
     const B r{cyl.radius};
     return {dot(qa, qa) - r * r * dot(axis, axis), B{T(2)} * dot(qa, da), dot(da, da)};
+}
+
+// Accurate: exact decisions, correctly rounded t (detail/exact_crossings.hpp).
+template <class T>
+inline Crossings<T> crossings(accurate_policy, const Ray<T>& ray, const Cylinder<T>& cyl)
+{
+    return detail::exact_curved_crossings(ray, cyl, true, cyl.caps == Caps::both, {true, true});
 }
 
 template <class T>

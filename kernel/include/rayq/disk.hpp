@@ -2,6 +2,9 @@
 // to the front) within `radius` of the center.
 #pragma once
 
+#include <tuple>
+
+#include "detail/exact_crossings.hpp"
 #include "detail/flat.hpp"
 #include "query.hpp"
 #include "validation.hpp"
@@ -43,11 +46,25 @@ inline Crossings<T> crossings(Policy policy, const Ray<T>& ray, const Disk<T>& d
 }
 
 // The supporting plane, with certified bounds (for Hit::t_error).
-template <class T>
-inline detail::Residual<T> residual(const Disk<T>& p, const Vec3<detail::Bounded<T>>& o, const Vec3<detail::Bounded<T>>& d,
-                                    detail::Bounded<T> t, Part)
+template <class N, class T>
+inline detail::Residual<N> residual(const Disk<T>& p, const Vec3<N>& o, const Vec3<N>& d, N t, Part)
 {
-    return detail::plane_residual(p.center, detail::exact(p.normal), o, d, t);
+    return detail::plane_residual(p.center, detail::lift<N>(p.normal), o, d, t);
+}
+
+// Accurate: exact decisions, correctly rounded t. Inside: |o + t·d − c|² − r² <= 0 at the
+// plane's root, evaluated exactly (detail/exact_crossings.hpp).
+template <class T>
+inline Crossings<T> crossings(accurate_policy, const Ray<T>& ray, const Disk<T>& disk)
+{
+    const auto rim = [&](auto zero) {
+        using N = decltype(zero);
+        const Vec3<N> q = detail::lift<N>(ray.origin) - detail::lift<N>(disk.center), d = detail::lift<N>(ray.direction);
+        const N r{disk.radius};
+        return detail::Residual<N>{dot(q, q) - r * r, N{T(2)} * dot(q, d), dot(d, d)};
+    };
+    const detail::PartCoefficients<Disk<T>> plane{&disk, &ray, Part::surface};
+    return detail::exact_flat_crossing(ray, disk, [&](const auto&) { return detail::quadratic_sign_at<T>(rim, plane) <= 0; });
 }
 
 template <class T>

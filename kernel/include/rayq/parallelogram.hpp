@@ -2,6 +2,9 @@
 // one edge0 × edge1 points to (the design notes' square and rectangle).
 #pragma once
 
+#include <tuple>
+
+#include "detail/exact_crossings.hpp"
 #include "detail/flat.hpp"
 #include "query.hpp"
 #include "validation.hpp"
@@ -38,11 +41,22 @@ inline Crossings<T> crossings(Policy policy, const Ray<T>& ray, const Parallelog
 }
 
 // The supporting plane, with certified bounds (for Hit::t_error).
-template <class T>
-inline detail::Residual<T> residual(const Parallelogram<T>& p, const Vec3<detail::Bounded<T>>& o, const Vec3<detail::Bounded<T>>& d,
-                                    detail::Bounded<T> t, Part)
+template <class N, class T>
+inline detail::Residual<N> residual(const Parallelogram<T>& p, const Vec3<N>& o, const Vec3<N>& d, N t, Part)
 {
-    return detail::plane_residual(p.corner, cross(detail::exact(p.edge0), detail::exact(p.edge1)), o, d, t);
+    return detail::plane_residual(p.corner, cross(detail::lift<N>(p.edge0), detail::lift<N>(p.edge1)), o, d, t);
+}
+
+// Accurate: exact decisions, correctly rounded t (detail/exact_crossings.hpp).
+template <class T>
+inline Crossings<T> crossings(accurate_policy, const Ray<T>& ray, const Parallelogram<T>& p)
+{
+    const auto edges = [&](auto zero) {
+        using N = decltype(zero);
+        return std::tuple{detail::lift<N>(p.corner), detail::lift<N>(p.edge0), detail::lift<N>(p.edge1)};
+    };
+    // det = e0·(d × e1) = −d·n, so its sign is minus the plane's slope along the ray.
+    return detail::exact_flat_crossing(ray, p, [&](const auto& plane) { return detail::exact_planar_inside(ray, edges, -plane.sign_b(), false); });
 }
 
 template <class T>

@@ -1,6 +1,9 @@
 // rayq — plane through `point`; `normal` (any length) points to the outside.
 #pragma once
 
+#include <tuple>
+
+#include "detail/exact_crossings.hpp"
 #include "detail/flat.hpp"
 #include "query.hpp"
 #include "validation.hpp"
@@ -34,11 +37,17 @@ inline Crossings<T> crossings(Policy policy, const Ray<T>& ray, const Plane<T>& 
 }
 
 // The supporting plane, with certified bounds (for Hit::t_error).
-template <class T>
-inline detail::Residual<T> residual(const Plane<T>& p, const Vec3<detail::Bounded<T>>& o, const Vec3<detail::Bounded<T>>& d,
-                                    detail::Bounded<T> t, Part)
+template <class N, class T>
+inline detail::Residual<N> residual(const Plane<T>& p, const Vec3<N>& o, const Vec3<N>& d, N t, Part)
 {
-    return detail::plane_residual(p.point, detail::exact(p.normal), o, d, t);
+    return detail::plane_residual(p.point, detail::lift<N>(p.normal), o, d, t);
+}
+
+// Accurate: exact decisions, correctly rounded t (detail/exact_crossings.hpp).
+template <class T>
+inline Crossings<T> crossings(accurate_policy, const Ray<T>& ray, const Plane<T>& p)
+{
+    return detail::exact_flat_crossing(ray, p, [](const auto&) { return true; });
 }
 
 template <class T>

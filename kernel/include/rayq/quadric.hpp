@@ -160,11 +160,10 @@ inline Crossings<T> crossings(Policy policy, const Ray<T>& ray, const Quadric<T>
 }
 
 // F(o + t·d), ∇F·d and F₂(d), with certified bounds (for Hit::t_error).
-template <class T>
-inline detail::Residual<T> residual(const Quadric<T>& q, const Vec3<detail::Bounded<T>>& o, const Vec3<detail::Bounded<T>>& d,
-                                    detail::Bounded<T> t, Part)
+template <class N, class T>
+inline detail::Residual<N> residual(const Quadric<T>& q, const Vec3<N>& o, const Vec3<N>& d, N t, Part)
 {
-    using B = detail::Bounded<T>;
+    using B = N;
     const Vec3<B> p = o + t * d;
     const B A{q.A}, Bc{q.B}, C{q.C}, D{q.D}, E{q.E}, F{q.F}, two{T(2)};
     const B f = A * p.x * p.x + Bc * p.y * p.y + C * p.z * p.z + D * p.x * p.y + E * p.x * p.z + F * p.y * p.z + B{q.G} * p.x +

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "detail/bounded.hpp"
+#include "detail/exact_crossings.hpp"
 #include "detail/policy_ops.hpp"
 #include "detail/spans.hpp"
 #include "quadratic.hpp"
@@ -39,14 +40,20 @@ inline Crossings<T> crossings(Policy policy, const Ray<T>& ray, const Sphere<T>&
 }
 
 // |o + t·d − c|² − r² with certified bounds (for Hit::t_error).
-template <class T>
-inline detail::Residual<T> residual(const Sphere<T>& s, const Vec3<detail::Bounded<T>>& o, const Vec3<detail::Bounded<T>>& d,
-                                    detail::Bounded<T> t, Part)
+template <class N, class T>
+inline detail::Residual<N> residual(const Sphere<T>& s, const Vec3<N>& o, const Vec3<N>& d, N t, Part)
 {
-    using B = detail::Bounded<T>;
-    const Vec3<B> q = o - detail::exact(s.center) + t * d;
+    using B = N;
+    const Vec3<B> q = o - detail::lift<N>(s.center) + t * d;
     const B r{s.radius};
     return {dot(q, q) - r * r, B{T(2)} * dot(q, d), dot(d, d)};
+}
+
+// Accurate: exact decisions, correctly rounded t (detail/exact_crossings.hpp).
+template <class T>
+inline Crossings<T> crossings(accurate_policy, const Ray<T>& ray, const Sphere<T>& s)
+{
+    return detail::exact_curved_crossings(ray, s, false, false, {false, false});
 }
 
 template <class T>

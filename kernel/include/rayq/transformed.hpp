@@ -183,7 +183,7 @@ inline Vec3<Bounded<T>> map_bounded(const Affine3<T>& m, const Vec3<Bounded<T>>&
 // The object's residual along the object-space ray, widened by the inverse's own error, so the
 // bound holds for the exact map to_world — the input — not only for the stored to_object.
 template <class Prim, class T>
-inline detail::Residual<T> residual(const Transformed<Prim, T>& x, const Vec3<detail::Bounded<T>>& o,
+inline detail::Residual<detail::Bounded<T>> residual(const Transformed<Prim, T>& x, const Vec3<detail::Bounded<T>>& o,
                                     const Vec3<detail::Bounded<T>>& d, detail::Bounded<T> t, Part part)
 {
     const T defect = detail::inverse_defect(x.to_object, x.to_world);

@@ -2,6 +2,9 @@
 // (counter-clockwise seen from the front, the right-hand rule).
 #pragma once
 
+#include <tuple>
+
+#include "detail/exact_crossings.hpp"
 #include "detail/flat.hpp"
 #include "query.hpp"
 #include "validation.hpp"
@@ -39,11 +42,22 @@ inline Crossings<T> crossings(Policy policy, const Ray<T>& ray, const Triangle<T
 }
 
 // The supporting plane, with certified bounds (for Hit::t_error).
-template <class T>
-inline detail::Residual<T> residual(const Triangle<T>& p, const Vec3<detail::Bounded<T>>& o, const Vec3<detail::Bounded<T>>& d,
-                                    detail::Bounded<T> t, Part)
+template <class N, class T>
+inline detail::Residual<N> residual(const Triangle<T>& p, const Vec3<N>& o, const Vec3<N>& d, N t, Part)
 {
-    return detail::plane_residual(p.a, cross(detail::exact(p.b) - detail::exact(p.a), detail::exact(p.c) - detail::exact(p.a)), o, d, t);
+    return detail::plane_residual(p.a, cross(detail::lift<N>(p.b) - detail::lift<N>(p.a), detail::lift<N>(p.c) - detail::lift<N>(p.a)), o, d, t);
+}
+
+// Accurate: exact decisions, correctly rounded t (detail/exact_crossings.hpp).
+template <class T>
+inline Crossings<T> crossings(accurate_policy, const Ray<T>& ray, const Triangle<T>& tri)
+{
+    const auto edges = [&](auto zero) {
+        using N = decltype(zero);
+        const Vec3<N> a = detail::lift<N>(tri.a);
+        return std::tuple{a, detail::lift<N>(tri.b) - a, detail::lift<N>(tri.c) - a};
+    };
+    return detail::exact_flat_crossing(ray, tri, [&](const auto& plane) { return detail::exact_planar_inside(ray, edges, -plane.sign_b(), true); });
 }
 
 template <class T>

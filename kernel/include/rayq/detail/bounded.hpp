@@ -51,13 +51,16 @@ template <class T> inline T upper(Bounded<T> a) { return grow(std::abs(a.v) + a.
 // (|v| − e) rounded toward zero: one rounding of relative size <= u, removed by (1 − 2u).
 template <class T> inline T lower(Bounded<T> a) { return (std::abs(a.v) - grow(a.e)) * (T(1) - T(2) * unit_roundoff<T>); }
 
-template <class T> inline Vec3<Bounded<T>> exact(const Vec3<T>& v) { return {{v.x}, {v.y}, {v.z}}; }
+// An input vector as numbers of type N (Bounded<T>: exact, error 0; Expansion<T>: one component).
+template <class N, class T> inline Vec3<N> lift(const Vec3<T>& v) { return {N{v.x}, N{v.y}, N{v.z}}; }
+template <class T> inline Vec3<Bounded<T>> exact(const Vec3<T>& v) { return lift<Bounded<T>>(v); }
 
-// F(t), F'(t) and the leading coefficient a of a primitive's implicit function along the ray,
-// each with its bound: what certify_root needs.
-template <class T>
+// F(t), F'(t) and the leading coefficient a of a primitive's implicit function along the ray, in
+// any number type N: with Bounded<T> each carries its bound (what certify_root needs); with
+// Expansion<T> they are exact (what the accurate policy's decisions fall back to).
+template <class N>
 struct Residual {
-    Bounded<T> f, df, a;
+    N f, df, a;
 };
 
 // A certified distance from t to the nearest root of the exact quadratic
@@ -67,15 +70,14 @@ struct Residual {
 // the cancellation-free form 2F/(F' ± √…)). Otherwise, if |a| >= A > 0, every real root has
 // |h| <= |F'|max/A + √(|F|max/A) (Cauchy's bound). Otherwise no bound: +infinity.
 // The plane through `point` with normal n: F = (o + t·d − point)·n, linear.
-template <class T>
-inline Residual<T> plane_residual(const Vec3<T>& point, const Vec3<Bounded<T>>& n, const Vec3<Bounded<T>>& o,
-                                  const Vec3<Bounded<T>>& d, Bounded<T> t)
+template <class N, class T>
+inline Residual<N> plane_residual(const Vec3<T>& point, const Vec3<N>& n, const Vec3<N>& o, const Vec3<N>& d, N t)
 {
-    return {dot(o - exact(point) + t * d, n), dot(d, n), Bounded<T>{T(0)}};
+    return {dot(o - lift<N>(point) + t * d, n), dot(d, n), N{T(0)}};
 }
 
 template <class T>
-inline T certify_root(const Residual<T>& r)
+inline T certify_root(const Residual<Bounded<T>>& r)
 {
     const T f_max = upper(r.f), a_max = upper(r.a), d_min = lower(r.df);
     if (d_min > T(0) && d_min * d_min * (T(1) - T(4) * unit_roundoff<T>) >= grow(T(4) * a_max * f_max))

@@ -1,0 +1,64 @@
+// rayq — double-word numbers (an unevaluated sum hi + lo of two floats) carrying a certified
+// error bound: the accurate policy's second filter, about u² relative instead of u. Algorithms:
+// Dekker 1971; bounds after Joldes, Muller, Popescu, "Tight and rigorous error bounds for basic
+// building blocks of double-word arithmetic" (ACM TOMS 2017): ≤ 3u² for the sum of two words
+// relative to |a| + |b|, ≤ 7u² for the product; we use 4u² and 8u², then inflate as Bounded does.
+#pragma once
+
+#include <cmath>
+#include <limits>
+
+#include "bounded.hpp"
+#include "eft.hpp"
+
+namespace rayq::detail {
+
+template <class T>
+struct DoubleWord {
+    T hi = T(0), lo = T(0);
+    T e = T(0);  // |exact − (hi + lo)| <= e
+
+    DoubleWord() = default;
+    DoubleWord(T x) : hi(x) {}  // NOLINT(google-explicit-constructor): numbers convert implicitly
+    DoubleWord(T h, T l, T err) : hi(h), lo(l), e(err) {}
+
+    T magnitude() const { return std::abs(hi) + std::abs(lo); }
+};
+
+template <class T>
+inline DoubleWord<T> renormalize(T hi, T lo, T e)
+{
+    const Pair<T> s = two_sum(hi, lo);
+    return {s.hi, s.lo, e};
+}
+
+template <class T>
+inline T u2() { return unit_roundoff<T> * unit_roundoff<T>; }
+
+template <class T> inline DoubleWord<T> operator+(const DoubleWord<T>& a, const DoubleWord<T>& b)
+{
+    const Pair<T> s = two_sum(a.hi, b.hi);
+    const T lo = s.lo + (a.lo + b.lo);
+    return renormalize(s.hi, lo, grow(a.e + b.e + T(4) * u2<T>() * (a.magnitude() + b.magnitude())));
+}
+template <class T> inline DoubleWord<T> operator-(const DoubleWord<T>& a) { return {-a.hi, -a.lo, a.e}; }
+template <class T> inline DoubleWord<T> operator-(const DoubleWord<T>& a, const DoubleWord<T>& b) { return a + (-b); }
+template <class T> inline DoubleWord<T> operator*(const DoubleWord<T>& a, const DoubleWord<T>& b)
+{
+    const Pair<T> p = two_product(a.hi, b.hi);
+    const T lo = p.lo + (a.hi * b.lo + a.lo * b.hi);
+    const T ma = a.magnitude(), mb = b.magnitude();
+    return renormalize(p.hi, lo, grow(ma * b.e + mb * a.e + a.e * b.e + T(8) * u2<T>() * ma * mb));
+}
+template <class T> inline DoubleWord<T>& operator+=(DoubleWord<T>& a, const DoubleWord<T>& b) { return a = a + b; }
+
+// Certain sign of the exact value, or 0 when the bound straddles zero.
+template <class T>
+inline int certain_sign(const DoubleWord<T>& x)
+{
+    const T v = x.hi + x.lo;  // |v − (hi + lo)| <= u·|v|
+    const T slack = grow(x.e + unit_roundoff<T> * std::abs(v));
+    return v > slack ? 1 : (-v > slack ? -1 : 0);
+}
+
+}  // namespace rayq::detail

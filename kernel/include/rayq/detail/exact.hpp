@@ -1,0 +1,254 @@
+// rayq — exact decisions for the accurate policy: signs of polynomials in the inputs, filtered
+// first (a certified-error estimate, as in Shewchuk's adaptive predicates) and decided by
+// expansion arithmetic only when the filter cannot; roots of a primitive's quadratic located
+// against floats and rationals exactly, and rounded correctly.
+#pragma once
+
+#include <atomic>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <algorithm>
+#include <limits>
+#include <optional>
+#include <utility>
+
+#include "bounded.hpp"
+#include "double_word.hpp"
+#include "expansion.hpp"
+
+namespace rayq {
+
+// Decisions the accurate policy's filters could not make and handed to exact arithmetic
+// (process-wide; relaxed increments, read it between runs).
+inline std::atomic<unsigned long long> exact_fallbacks{0};
+
+namespace detail {
+
+// The sign of expr(N) for the exact inputs: expr is generic over the number type and is called
+// with a zero of Bounded<T> (working precision), then DoubleWord<T> (about twice the precision),
+// and only if neither can decide, of Expansion<T> (exact).
+template <class T, class Expr>
+inline int adaptive_sign(const Expr& expr)
+{
+    const Bounded<T> b = expr(Bounded<T>{T(0)});
+    if (b.v == T(0) && b.e == T(0)) return 0;  // exactly zero (e.g. a plane's leading coefficient)
+    if (b.v > b.e) return 1;
+    if (-b.v > b.e) return -1;
+    if (const int s = certain_sign(expr(DoubleWord<T>{T(0)}))) return s;
+    exact_fallbacks.fetch_add(1, std::memory_order_relaxed);
+    return expr(Expansion<T>{}).sign();
+}
+
+// A point on the ray's parameter line is given exactly as the root t = −g/dg of a linear
+// function g + dg·t (dg ≠ 0), by a callable N -> Residual<N> with f = g, df = dg (a unused).
+// A float x is {−x, 1}; the midpoint of floats x, y is {−x − y, 2}; a cap plane is its residual.
+template <class T>
+struct FloatLine {
+    T g, dg;
+    template <class N>
+    Residual<N> operator()(N) const { return {N{g}, N{dg}, N{T(0)}}; }
+};
+
+// The midpoint of two floats, t = (a + b)/2 exactly: g = −a − b (summed in N), dg = 2.
+template <class T>
+struct MidpointLine {
+    T a, b;
+    template <class N>
+    Residual<N> operator()(N) const { return {N{-a} + N{-b}, N{T(2)}, N{T(0)}}; }
+};
+
+// The quadratic a·t² + b·t + c along the ray, whose coefficients `coef` computes in any number
+// type (a primitive's residual at t = 0). Signs of a and of the discriminant are decided once.
+template <class T, class Coef>
+class ExactQuadratic {
+public:
+    explicit ExactQuadratic(const Coef& coef) : coef_(coef)
+    {
+        sign_a_ = adaptive_sign<T>([&](auto zero) { return coef_(zero).a; });
+        if (sign_a_ != 0) {
+            sign_disc_ = adaptive_sign<T>([&](auto zero) {
+                const auto r = coef_(zero);
+                return r.df * r.df - decltype(zero){T(4)} * r.a * r.f;
+            });
+            sign_b_ = 0;
+        } else {
+            sign_b_ = adaptive_sign<T>([&](auto zero) { return coef_(zero).df; });
+            sign_c_ = sign_b_ == 0 ? adaptive_sign<T>([&](auto zero) { return coef_(zero).f; }) : 0;
+        }
+    }
+
+    int sign_a() const { return sign_a_; }
+    int sign_disc() const { return sign_disc_; }  // quadratic case
+    int sign_b() const { return sign_b_; }        // linear case
+    int sign_c() const { return sign_c_; }        // constant case
+
+    // sign of the quadratic at x = −g/dg: sign(c·dg² − b·g·dg + a·g²), dg² > 0.
+    template <class Line>
+    int sign_at(const Line& x) const
+    {
+        return adaptive_sign<T>([&](auto zero) {
+            const auto r = coef_(zero);
+            const auto l = x(zero);
+            return r.f * l.df * l.df - r.df * l.f * l.df + r.a * l.f * l.f;
+        });
+    }
+
+    // sign(x − r) for r the smaller (which = 0) or larger (which = 1) real root, x = −g/dg.
+    // Requires real roots (sign_disc >= 0) or, when a = 0, b ≠ 0 (then which is ignored).
+    template <class Line>
+    int compare(int which, const Line& x) const
+    {
+        if (sign_a_ == 0) {  // root −c/b: sign(−g/dg + c/b) = sign(c·dg − g·b)·sign(b)·sign(dg)
+            const int s = adaptive_sign<T>([&](auto zero) {
+                const auto r = coef_(zero);
+                const auto l = x(zero);
+                return r.f * l.df - l.f * r.df;
+            });
+            return s * sign_b_ * line_direction(x);
+        }
+        // sign(a)·R(x)·dg² = sign(a)·(c·dg² − b·g·dg + a·g²): < 0 strictly between the roots.
+        const int inside = sign_a_ * sign_at(x);
+        if (inside < 0) return which == 0 ? 1 : -1;
+        // Side of the vertex −b/2a: sign(x − vertex) = sign(b·dg − 2a·g)·sign(a)·sign(dg).
+        const int side = sign_a_ * line_direction(x) * adaptive_sign<T>([&](auto zero) {
+                             const auto r = coef_(zero);
+                             const auto l = x(zero);
+                             return r.df * l.df - decltype(zero){T(2)} * r.a * l.f;
+                         });
+        if (inside > 0) return side < 0 ? -1 : 1;
+        if (sign_disc_ == 0) return 0;  // x is the double root
+        if (side < 0) return which == 0 ? 0 : -1;
+        return which == 0 ? 1 : 0;
+    }
+
+    // A float estimate of the root (from the filter's coefficient values, stable q-form).
+    T guess(int which) const
+    {
+        const Residual<Bounded<T>> r = coef_(Bounded<T>{T(0)});
+        const T a = r.a.v, b = r.df.v, c = r.f.v;
+        if (sign_a_ == 0) return -c / b;
+        const T disc = std::max(b * b - T(4) * a * c, T(0));
+        const T q = T(-0.5) * (b + std::copysign(std::sqrt(disc), b));
+        T t0 = q / a, t1 = q == T(0) ? t0 : c / q;
+        if (t1 < t0) std::swap(t0, t1);
+        return which == 0 ? t0 : t1;
+    }
+
+    // The root rounded to nearest (ties to even) in T: a certified Newton step in double-word
+    // arithmetic from `guess` when it can decide, else an exact search.
+    T round(int which, T guess) const
+    {
+        if (const auto quick = newton_round(which, guess)) return *quick;
+        return search_round(which, guess);
+    }
+
+    // One Newton step t + δ, δ = −F(t)/F'(t), with F, F' and a evaluated in double-word arithmetic
+    // at t. With x = 4·|a|·|F|/F'² <= 1/2 the nearest root lies within |δ|·x/2 of t + δ (the
+    // quadratic's root 2F/(F' ± √(F'² − 4aF)) against its linearization), plus the bounds'
+    // effect on δ. If no rounding boundary of T lies within that, fl(t + δ) is correctly rounded.
+    std::optional<T> newton_round(int which, T t) const
+    {
+        if (!std::isfinite(t)) return std::nullopt;
+        const Residual<DoubleWord<T>> r = coef_.at(DoubleWord<T>{t});
+        const T u = unit_roundoff<T>;
+        const T fv = r.f.hi + r.f.lo, dv = r.df.hi + r.df.lo;
+        const T f_err = grow(r.f.e + u * std::abs(fv)), d_err = grow(r.df.e + u * std::abs(dv));
+        const T d_min = (std::abs(dv) - d_err) * (T(1) - T(2) * u);
+        if (!(d_min > T(0))) return std::nullopt;
+        // The nearest root is the requested one: F' has the sign of an entry (−sign a) at the smaller root.
+        if (sign_a_ != 0 && (dv > T(0) ? 1 : -1) * sign_a_ != (which == 0 ? -1 : 1)) return std::nullopt;
+        const T f_max = grow(std::abs(fv) + f_err), a_max = grow(r.a.magnitude() + r.a.e);
+        const T x = grow(T(4) * a_max * f_max / (d_min * d_min));
+        if (!(x <= T(0.5))) return std::nullopt;
+        const T delta = -fv / dv;
+        const T delta_max = grow(f_max / d_min);
+        const T spread = grow(grow(delta_max * x / T(2)) + grow((f_err * std::abs(dv) + std::abs(fv) * d_err) / (std::abs(dv) * d_min)) +
+                              u * std::abs(delta));
+        const T rounded = t + delta;
+        if (!std::isfinite(rounded)) return std::nullopt;
+        // Offset of t + δ from `rounded`, exactly up to one rounding: (t − rounded) is a two-sum.
+        const Pair<T> gap = two_sum(t, -rounded);
+        const T offset = gap.hi + (gap.lo + delta);
+        const T slack = grow(spread + T(2) * u * (std::abs(gap.lo) + std::abs(delta) + std::abs(offset)));
+        const T up = (std::nextafter(rounded, std::numeric_limits<T>::infinity()) - rounded) / T(2);
+        const T down = (rounded - std::nextafter(rounded, -std::numeric_limits<T>::infinity())) / T(2);
+        if (offset + slack < up && offset - slack > -down) return rounded;
+        return std::nullopt;
+    }
+
+    // Exact: gallop from `guess` in ulps until the root is bracketed, bisect, then settle the
+    // last ulp against the midpoint.
+    T search_round(int which, T guess) const
+    {
+        if (!std::isfinite(guess)) guess = T(0);
+        const auto at = [&](T x) { return compare(which, FloatLine<T>{-x, T(1)}); };
+        int c = at(guess);
+        if (c == 0) return guess;
+        // Gallop away from guess in ulps until the root is bracketed, then bisect on the ordered bits.
+        std::int64_t lo = key(guess), hi = lo, step = 1;
+        const int toward = -c;  // +1: root above guess
+        for (;;) {
+            const std::int64_t next = lo + toward * step;
+            const T y = value(next);
+            const int cy = std::isfinite(y) ? at(y) : toward;
+            if (cy == 0) return y;
+            if (cy != c) {
+                hi = next;
+                break;
+            }
+            lo = next;
+            step *= 2;
+        }
+        if (lo > hi) std::swap(lo, hi);
+        while (hi - lo > 1) {  // invariant: the root lies strictly between value(lo) and value(hi)
+            const std::int64_t mid = lo + (hi - lo) / 2;
+            const int cm = at(value(mid));
+            if (cm == 0) return value(mid);
+            (cm < 0 ? lo : hi) = mid;
+        }
+        const T a = value(lo), b = value(hi);
+        const int cm = compare(which, MidpointLine<T>{a, b});
+        if (cm < 0) return b;  // midpoint below the root
+        if (cm > 0) return a;
+        return (key(a) & 1) == 0 ? a : b;
+    }
+
+private:
+    template <class Line>
+    static int line_direction(const Line& x)
+    {
+        return adaptive_sign<T>([&](auto zero) { return x(zero).df; });
+    }
+    // Floats ordered as integers: the key of the next float up is key + 1.
+    static std::int64_t key(T x)
+    {
+        if constexpr (sizeof(T) == 8) {
+            std::int64_t i;
+            std::memcpy(&i, &x, 8);
+            return i < 0 ? std::numeric_limits<std::int64_t>::min() - i : i;
+        } else {
+            std::int32_t i;
+            std::memcpy(&i, &x, 4);
+            return i < 0 ? std::int64_t(std::numeric_limits<std::int32_t>::min()) - i : i;
+        }
+    }
+    static T value(std::int64_t k)
+    {
+        T x;
+        if constexpr (sizeof(T) == 8) {
+            const std::int64_t i = k < 0 ? std::numeric_limits<std::int64_t>::min() - k : k;
+            std::memcpy(&x, &i, 8);
+        } else {
+            const std::int32_t i = std::int32_t(k < 0 ? std::int64_t(std::numeric_limits<std::int32_t>::min()) - k : k);
+            std::memcpy(&x, &i, 4);
+        }
+        return x;
+    }
+
+    Coef coef_;
+    int sign_a_ = 0, sign_disc_ = 0, sign_b_ = 0, sign_c_ = 0;
+};
+
+}  // namespace detail
+}  // namespace rayq

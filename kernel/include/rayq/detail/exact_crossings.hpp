@@ -1,0 +1,288 @@
+// rayq — the accurate policy's crossings: every decision (hit or miss, which part, inside the
+// window) made exactly on the float inputs, and every t rounded correctly from the exact root.
+#pragma once
+
+#include <optional>
+
+#include "../hit.hpp"
+#include "../query.hpp"
+#include "../ray.hpp"
+#include "exact.hpp"
+#include "spans.hpp"
+
+namespace rayq::detail {
+
+// One part's implicit function along the ray as coefficients at t = 0, in any number type: the
+// primitive's own residual(), so the exact path evaluates the same formulation as t_error.
+template <class Prim>
+struct PartCoefficients {
+    const Prim* prim;
+    const Ray<scalar_t<Prim>>* ray;
+    Part part;
+
+    template <class N>
+    Residual<N> at(N t) const
+    {
+        return residual(*prim, lift<N>(ray->origin), lift<N>(ray->direction), t, part);
+    }
+    template <class N>
+    Residual<N> operator()(N zero) const { return at(zero); }
+};
+
+// Ends of spans, symbolically: ±infinity, a root of the side's quadratic, or a cap plane's t.
+enum class EndKind : unsigned char { neg_inf, pos_inf, root, cap0, cap1 };
+struct End {
+    EndKind kind;
+    int which = 0;  // for roots: 0 smaller, 1 larger
+    constexpr bool finite() const { return kind != EndKind::neg_inf && kind != EndKind::pos_inf; }
+};
+
+// A curved primitive's side quadratic and, for axial primitives, its two cap planes, with exact
+// comparisons between any two span ends and against floats.
+template <class Prim>
+class ExactSolid {
+    using T = scalar_t<Prim>;
+    using Coef = PartCoefficients<Prim>;
+    using Quadratic = ExactQuadratic<T, Coef>;
+
+public:
+    ExactSolid(const Ray<T>& ray, const Prim& prim, bool axial) : ray_(ray), prim_(prim), side_(coef(Part::surface))
+    {
+        if (axial) {
+            cap0_.emplace(coef(Part::cap0));
+            cap1_.emplace(coef(Part::cap1));
+        }
+    }
+
+    // The side solid's spans (where its implicit function is negative), ascending.
+    int side_spans(End (&enter)[2], End (&exit)[2]) const
+    {
+        const End lo{EndKind::neg_inf}, hi{EndKind::pos_inf}, r0{EndKind::root, 0}, r1{EndKind::root, 1};
+        int n = 0;
+        const auto add = [&](End a, End b) { enter[n] = a, exit[n] = b, ++n; };
+        if (side_.sign_a() == 0) {
+            if (side_.sign_b() == 0) {
+                if (side_.sign_c() < 0) add(lo, hi);
+            } else if (side_.sign_b() < 0) {
+                add(r0, hi);
+            } else {
+                add(lo, r0);
+            }
+        } else if (side_.sign_disc() < 0 || (side_.sign_disc() == 0 && side_.sign_a() < 0)) {
+            if (side_.sign_a() < 0) add(lo, hi);  // inside everywhere (touching once, at an apex)
+        } else if (side_.sign_a() > 0) {
+            add(r0, r1);
+        } else {
+            add(lo, r0);
+            add(r1, hi);
+        }
+        return n;
+    }
+
+    // The slab between the cap planes; false when the ray runs parallel to them outside it.
+    bool slab(End& enter, End& exit) const
+    {
+        const int dg = cap0_->sign_b();  // d·A, shared by both planes
+        if (dg == 0) {
+            enter = {EndKind::neg_inf};
+            exit = {EndKind::pos_inf};
+            return cap0_->sign_c() >= 0 && cap1_->sign_c() <= 0;  // (o − p0)·A >= 0, (o − p1)·A <= 0
+        }
+        enter = {dg > 0 ? EndKind::cap0 : EndKind::cap1};
+        exit = {dg > 0 ? EndKind::cap1 : EndKind::cap0};
+        return true;
+    }
+
+    // sign(x − y).
+    int compare(End x, End y) const
+    {
+        if (x.kind == y.kind && !x.finite()) return 0;
+        if (x.kind == EndKind::neg_inf || y.kind == EndKind::pos_inf) return -1;
+        if (x.kind == EndKind::pos_inf || y.kind == EndKind::neg_inf) return 1;
+        // Filter: each exact end lies strictly between the neighbours of its rounded value, so
+        // rounded values two or more ulps apart order the ends.
+        if (const int s = separated(rounded(x), rounded(y))) return s;
+        if (x.kind == EndKind::root && y.kind == EndKind::root)
+            return side_.sign_disc() == 0 || x.which == y.which ? 0 : (x.which < y.which ? -1 : 1);
+        if (x.kind == EndKind::root) return -side_.compare(x.which, coef(part_of(y.kind)));
+        if (y.kind == EndKind::root) return side_.compare(y.which, coef(part_of(x.kind)));
+        if (x.kind == y.kind) return 0;
+        // t_cap0 − t_cap1 = ((o − p1)·A − (o − p0)·A)/(d·A) = −|A|²/(d·A).
+        const int t0_minus_t1 = -cap0_->sign_b();
+        return x.kind == EndKind::cap0 ? t0_minus_t1 : -t0_minus_t1;
+    }
+
+    // sign(e − x) for a float x (a window bound; ±infinity allowed).
+    int compare(End e, T x) const
+    {
+        constexpr T inf = std::numeric_limits<T>::infinity();
+        if (e.kind == EndKind::neg_inf) return x == -inf ? 0 : -1;
+        if (e.kind == EndKind::pos_inf) return x == inf ? 0 : 1;
+        if (!std::isfinite(x)) return x > T(0) ? -1 : 1;
+        const T r = rounded(e);
+        if (std::nextafter(r, -std::numeric_limits<T>::infinity()) >= x) return 1;
+        if (std::nextafter(r, std::numeric_limits<T>::infinity()) <= x) return -1;
+        const FloatLine<T> at{-x, T(1)};
+        return -quadratic(e).compare(e.which, at);
+    }
+
+    bool in_window(End e) const { return compare(e, ray_.tmin) > 0 && compare(e, ray_.tmax) < 0; }
+
+    // The end's t correctly rounded (memoized), kept strictly inside the window (where the exact value is).
+    T value(End e) const
+    {
+        T t = rounded(e);
+        if (!(t > ray_.tmin)) t = std::nextafter(ray_.tmin, std::numeric_limits<T>::infinity());
+        if (!(t < ray_.tmax)) t = std::nextafter(ray_.tmax, -std::numeric_limits<T>::infinity());
+        return t;
+    }
+
+private:
+    T rounded(End e) const
+    {
+        const int slot = e.kind == EndKind::root ? e.which : (e.kind == EndKind::cap0 ? 2 : 3);
+        if (!cache_[slot]) {
+            const Quadratic& q = quadratic(e);
+            cache_[slot] = q.round(e.which, q.guess(e.which));
+        }
+        return *cache_[slot];
+    }
+    // sign(x − y) when x and y are at least two ulps apart, else 0.
+    static int separated(T x, T y)
+    {
+        constexpr T inf = std::numeric_limits<T>::infinity();
+        if (std::nextafter(std::nextafter(x, inf), inf) <= y) return -1;
+        if (std::nextafter(std::nextafter(y, inf), inf) <= x) return 1;
+        return 0;
+    }
+
+    static Part part_of(EndKind k) { return k == EndKind::cap0 ? Part::cap0 : Part::cap1; }
+    Coef coef(Part p) const { return {&prim_, &ray_, p}; }
+    const Quadratic& quadratic(End e) const
+    {
+        return e.kind == EndKind::root ? side_ : (e.kind == EndKind::cap0 ? *cap0_ : *cap1_);
+    }
+
+    const Ray<T>& ray_;
+    const Prim& prim_;
+    Quadratic side_;
+    std::optional<Quadratic> cap0_, cap1_;
+    mutable std::optional<T> cache_[4];  // rounded values: root 0, root 1, cap0, cap1
+};
+
+// Crossings of a sphere-like (no caps) or axial (slab-clipped, open or capped) curved primitive,
+// with the same interval logic as the floating-point path but exact comparisons.
+template <class Prim>
+inline Crossings<scalar_t<Prim>> exact_curved_crossings(const Ray<scalar_t<Prim>>& ray, const Prim& prim, bool axial, bool capped,
+                                                         CapEnds ends)
+{
+    using T = scalar_t<Prim>;
+    const ExactSolid<Prim> solid(ray, prim, axial);
+    End enter[2], exit[2];
+    const int spans = solid.side_spans(enter, exit);
+    struct Candidate {
+        End end;
+        Part part;
+        bool entering;
+    };
+    Candidate found[4];
+    int n = 0;
+    End slab_in{EndKind::neg_inf}, slab_out{EndKind::pos_inf};
+    if (axial && !solid.slab(slab_in, slab_out)) return {};
+    for (int i = 0; i < spans; ++i) {
+        if (!axial) {
+            found[n++] = {enter[i], Part::surface, true};
+            found[n++] = {exit[i], Part::surface, false};
+        } else if (capped) {
+            // Solid = side ∩ slab; at a tie the cap wins where that end has one.
+            const auto cap_part = [](End e) { return e.kind == EndKind::cap0 ? Part::cap0 : Part::cap1; };
+            const bool cap_in = solid.compare(slab_in, enter[i]) >= 0, cap_out = solid.compare(slab_out, exit[i]) <= 0;
+            const End in = cap_in ? slab_in : enter[i], out = cap_out ? slab_out : exit[i];
+            if (solid.compare(in, out) > 0) continue;
+            const Part in_part = cap_in && in.finite() && ends.closes(cap_part(in)) ? cap_part(in) : Part::surface;
+            const Part out_part = cap_out && out.finite() && ends.closes(cap_part(out)) ? cap_part(out) : Part::surface;
+            found[n++] = {in, in_part, true};
+            found[n++] = {out, out_part, false};
+            break;  // convex: one span survives
+        } else {
+            for (const auto& [e, entering] : {std::pair{enter[i], true}, std::pair{exit[i], false}})
+                if (e.finite() && solid.compare(slab_in, e) <= 0 && solid.compare(e, slab_out) <= 0) found[n++] = {e, Part::surface, entering};
+        }
+    }
+    Crossings<T> out;
+    for (int i = 0; i < n && out.count < 2; ++i)
+        if (found[i].end.finite() && solid.in_window(found[i].end)) out.add(solid.value(found[i].end), found[i].part, found[i].entering);
+    return out;
+}
+
+}  // namespace rayq::detail
+
+namespace rayq::detail {
+
+// The crossing of a flat primitive's plane, if the exact inside test `inside(plane)` accepts it
+// (it receives the plane's exact quadratic, whose root is the crossing).
+template <class Prim, class Inside>
+inline Crossings<scalar_t<Prim>> exact_flat_crossing(const Ray<scalar_t<Prim>>& ray, const Prim& prim, const Inside& inside)
+{
+    using T = scalar_t<Prim>;
+    using Coef = PartCoefficients<Prim>;
+    const ExactQuadratic<T, Coef> plane(Coef{&prim, &ray, Part::surface});
+    Crossings<T> out;
+    if (plane.sign_b() == 0) return out;  // parallel to the plane, or in it
+    T t = plane.round(0, plane.guess(0));
+    // The exact root lies strictly between t's neighbours: decide the window from them when they
+    // suffice, exactly otherwise.
+    constexpr T inf = std::numeric_limits<T>::infinity();
+    const auto after = [&](T x) {
+        if (!std::isfinite(x)) return x < T(0);
+        if (std::nextafter(t, -inf) >= x) return true;
+        if (std::nextafter(t, inf) <= x) return false;
+        return plane.compare(0, FloatLine<T>{-x, T(1)}) < 0;
+    };
+    const auto before = [&](T x) {
+        if (!std::isfinite(x)) return x > T(0);
+        if (std::nextafter(t, inf) <= x) return true;
+        if (std::nextafter(t, -inf) >= x) return false;
+        return plane.compare(0, FloatLine<T>{-x, T(1)}) > 0;
+    };
+    if (!after(ray.tmin) || !before(ray.tmax) || !inside(plane)) return out;
+    if (!(t > ray.tmin)) t = std::nextafter(ray.tmin, std::numeric_limits<T>::infinity());
+    if (!(t < ray.tmax)) t = std::nextafter(ray.tmax, -std::numeric_limits<T>::infinity());
+    out.add(t, Part::surface, plane.sign_b() < 0);  // F = (o + t·d − p)·n decreasing: entering
+    return out;
+}
+
+// The ray's line against corner + α·e0 + β·e1 (Möller–Trumbore's numerators over N), with the
+// exact test 0 <= α, β and α <= 1, β <= 1 (parallelogram) or α + β <= 1 (triangle).
+template <class T, class Edges>
+inline bool exact_planar_inside(const Ray<T>& ray, const Edges& edges, int sign_det, bool triangle)
+{
+    const auto numerators = [&](auto zero) {
+        using N = decltype(zero);
+        const auto [corner, e0, e1] = edges(zero);
+        const Vec3<N> q = lift<N>(ray.origin) - corner, d = lift<N>(ray.direction);
+        const Vec3<N> p = cross(d, e1), r = cross(q, e0);
+        struct {
+            N det, alpha, beta;
+        } out{dot(e0, p), dot(q, p), dot(d, r)};
+        return out;
+    };
+    const auto nonneg = [&](auto expr) { return sign_det * adaptive_sign<T>(expr) >= 0; };
+    if (!nonneg([&](auto z) { return numerators(z).alpha; }) || !nonneg([&](auto z) { return numerators(z).beta; })) return false;
+    if (triangle) return nonneg([&](auto z) { const auto m = numerators(z); return m.det - m.alpha - m.beta; });
+    return nonneg([&](auto z) { const auto m = numerators(z); return m.det - m.alpha; }) &&
+           nonneg([&](auto z) { const auto m = numerators(z); return m.det - m.beta; });
+}
+
+// sign(F(x)) for a quadratic F given by coefficients at t = 0, at x = −g/dg: sign(c·dg² − b·g·dg + a·g²).
+template <class T, class Coef, class Line>
+inline int quadratic_sign_at(const Coef& coef, const Line& x)
+{
+    return adaptive_sign<T>([&](auto zero) {
+        const auto r = coef(zero);
+        const auto l = x(zero);
+        return r.f * l.df * l.df - r.df * l.f * l.df + r.a * l.f * l.f;
+    });
+}
+
+}  // namespace rayq::detail

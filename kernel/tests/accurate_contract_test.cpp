@@ -1,0 +1,143 @@
+// The accurate policy's contract, checked against the binary128 reference: every reported t is
+// the correctly rounded exact root (so within half an ulp — the contract asks for one), on generic
+// rays and on grazing families down to 10^-k of tangency; hit/miss agrees with the other policies
+// wherever they are not in doubt. (The exact CGAL oracle in validation/ checks hit/miss exactly.)
+#include "quad_reference.hpp"
+#include "test_support.hpp"
+
+#include <random>
+
+namespace rayq::test {
+namespace {
+
+template <class T>
+class AccurateContractTest : public ::testing::Test {};
+using Types = ::testing::Types<float, double>;
+TYPED_TEST_SUITE(AccurateContractTest, Types);
+
+struct Tally {
+    int rays = 0, hits = 0, not_rounded = 0;
+    double worst_ulps = 0;
+};
+
+// |t − exact| in ulps of t, from the binary128 root.
+template <class T, class Prim>
+double ulps_off(const Prim& prim, const Ray<T>& r, const Hit<T>& h)
+{
+    const quad exact = refine(prim, q3(r.origin), q3(r.direction), quad(h.t), h.part);
+    const quad ulp = quad(std::nextafter(h.t, std::numeric_limits<T>::infinity())) - quad(h.t);
+    return double(qabs(quad(h.t) - exact) / ulp);
+}
+
+template <class T, class Prim>
+void check_ray(const Prim& prim, const Ray<T>& r, Tally& tally, const char* name)
+{
+    ++tally.rays;
+    const auto h = intersect(accurate, r, prim);
+    if (!h) return;
+    ++tally.hits;
+    const double ulps = ulps_off(prim, r, *h);
+    tally.worst_ulps = std::max(tally.worst_ulps, ulps);
+    // Correctly rounded: at most half an ulp (a hair more where the exact root sits on a tie).
+    if (ulps > 0.5 + 1e-6) {
+        ++tally.not_rounded;
+        ADD_FAILURE() << name << ": t = " << std::hexfloat << h->t << " is " << std::defaultfloat << ulps << " ulps from the exact root; ray o = ("
+                      << std::hexfloat << r.origin.x << ", " << r.origin.y << ", " << r.origin.z << ") d = (" << r.direction.x << ", "
+                      << r.direction.y << ", " << r.direction.z << ")";
+    }
+}
+
+template <class T, class Prim>
+void generic_rays(const Prim& prim, const char* name, std::uint64_t seed, Tally& tally)
+{
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(-1, 1), lg(-2, 2);
+    for (int i = 0; i < 4000; ++i) {
+        const double scale = std::pow(10.0, lg(rng));
+        const Vec3<T> o{T(4 * u(rng)), T(4 * u(rng)), T(4 * u(rng))};
+        const Vec3<T> aim{T(1.2 * u(rng)), T(1.2 * u(rng)), T(1.2 * u(rng))};
+        check_ray(prim, Ray<T>{o, Vec3<T>{T((aim.x - o.x) * scale), T((aim.y - o.y) * scale), T((aim.z - o.z) * scale)}}, tally, name);
+    }
+}
+
+TYPED_TEST(AccurateContractTest, CorrectlyRoundedOnGenericRays)
+{
+    using T = TypeParam;
+    const unsigned long long before = exact_fallbacks.load();
+    Tally tally;
+    generic_rays<T>(Sphere<T>{v3<T>(0.1, -0.2, 0.3), T(1)}, "sphere", 1, tally);
+    generic_rays<T>(Plane<T>{v3<T>(0.1, 0.2, 0.3), v3<T>(0.3, -1, 0.7)}, "plane", 2, tally);
+    generic_rays<T>(Disk<T>{v3<T>(0.1, 0.2, 0.3), v3<T>(0.3, -1, 0.7), T(1.1)}, "disk", 3, tally);
+    generic_rays<T>(Parallelogram<T>{v3<T>(-1, -0.9, 0.1), v3<T>(2, 0.3, 0.1), v3<T>(0.2, 1.8, -0.4)}, "parallelogram", 4, tally);
+    generic_rays<T>(Triangle<T>{v3<T>(-1, -0.9, 0.1), v3<T>(1.3, -0.2, 0.3), v3<T>(0.2, 1.4, -0.4)}, "triangle", 5, tally);
+    generic_rays<T>(Cylinder<T>{v3<T>(-0.3, -0.6, -0.9), v3<T>(0.5, 0.4, 0.8), T(0.7), Caps::both}, "cylinder capped", 6, tally);
+    generic_rays<T>(Cylinder<T>{v3<T>(-0.3, -0.6, -0.9), v3<T>(0.5, 0.4, 0.8), T(0.7), Caps::none}, "cylinder open", 7, tally);
+    generic_rays<T>(Cone<T>{v3<T>(-0.3, -0.6, -0.9), T(0.9), v3<T>(0.5, 0.4, 0.8), T(0.2), Caps::both}, "cone frustum", 8, tally);
+    generic_rays<T>(Cone<T>{v3<T>(-0.3, -0.6, -0.9), T(1), v3<T>(0.5, 0.4, 0.8), T(0), Caps::none}, "cone apex open", 9, tally);
+    const double rate = double(exact_fallbacks.load() - before) / tally.rays;
+    std::printf("accurate %s generic: rays=%d hits=%d not correctly rounded=%d worst=%.3f ulp exact fallbacks/ray=%.4f\n",
+                std::is_same_v<T, float> ? "float" : "double", tally.rays, tally.hits, tally.not_rounded, tally.worst_ulps, rate);
+    EXPECT_EQ(tally.not_rounded, 0);
+    EXPECT_GT(tally.hits, tally.rays / 4);
+}
+
+// Rays passing the unit sphere (at 10^4 and at the origin) at 1 ∓ 10^-k of the radius: hits on one
+// side, misses on the other — exactly as the geometry says when the offset is representable — and
+// every hit correctly rounded.
+TYPED_TEST(AccurateContractTest, GrazingSphere)
+{
+    using T = TypeParam;
+    const int kmax = std::is_same_v<T, float> ? 7 : 15;
+    Tally tally;
+    for (const T distance : {T(0), T(1e4)}) {
+        const Sphere<T> s{Vec3<T>{distance, T(0), T(0)}, T(1)};
+        for (int k = 1; k <= kmax; ++k) {
+            for (const int side : {-1, 1}) {
+                const T offset = T(1) + T(side) * T(std::pow(10.0, -k));  // rounded, then used exactly
+                const Ray<T> r{Vec3<T>{distance, offset, T(-5)}, Vec3<T>{T(0), T(0), T(1)}};
+                // The line y = offset, x = distance is at distance |offset| from the center: hit iff offset <= 1.
+                const bool expect_hit = offset <= T(1);
+                const auto h = intersect(accurate, r, s);
+                EXPECT_EQ(h.has_value(), expect_hit) << "k=" << k << " side=" << side << " distance=" << distance;
+                check_ray(s, r, tally, "grazing sphere");
+            }
+        }
+    }
+    EXPECT_EQ(tally.not_rounded, 0);
+}
+
+// The far, small sphere of the notes: all three policies hit; only accurate is correctly rounded
+// in float (fast is off by ~2 units of t, see SphereTest.FarAwaySmallSphere).
+TYPED_TEST(AccurateContractTest, FarSphereAlongAnOddDirection)
+{
+    using T = TypeParam;
+    const Sphere<T> s{Vec3<T>{T(6000), T(8000), T(0)}, T(1)};
+    const Ray<T> r{Vec3<T>{T(0), T(0), T(0)}, Vec3<T>{T(0.6), T(0.8), T(0)}};
+    Tally tally;
+    check_ray(s, r, tally, "far sphere");
+    EXPECT_EQ(tally.hits, 1);
+    EXPECT_EQ(tally.not_rounded, 0);
+}
+
+// Windows that end a hair from the exact root: the decision follows the exact root, not its rounding.
+TYPED_TEST(AccurateContractTest, WindowAtTheRoot)
+{
+    using T = TypeParam;
+    // Plane x = 1/3 (not representable): the root t = 1/3 lies strictly between two floats.
+    const Plane<T> p{Vec3<T>{T(1) / T(3), T(0), T(0)}, Vec3<T>{T(1), T(0), T(0)}};
+    const Ray<T> base{Vec3<T>{T(0), T(0), T(0)}, Vec3<T>{T(1), T(0), T(0)}};
+    const auto h = intersect(accurate, base, p);
+    ASSERT_TRUE(h);
+    // p.point.x is the float nearest 1/3: the exact root is that float itself.
+    EXPECT_EQ(h->t, p.point.x);
+    Ray<T> r = base;
+    r.tmax = p.point.x;  // t < tmax fails exactly at the root
+    EXPECT_FALSE(intersect(accurate, r, p));
+    r.tmax = std::nextafter(p.point.x, T(1));
+    EXPECT_TRUE(intersect(accurate, r, p));
+    r.tmin = p.point.x;
+    EXPECT_FALSE(intersect(accurate, r, p));
+}
+
+}  // namespace
+}  // namespace rayq::test
