@@ -10,8 +10,10 @@ namespace rayq {
 struct fast_policy {};
 // Hearn–Baker discriminant (r² − |f − (f·d̂)d̂|²) and the cancellation-free q = −(b + sign(b)√Δ) roots.
 struct stable_policy {};
-// Error-free transformations (FMA two-product): difference-of-products discriminant,
-// compensated dot products and cross products, stable roots.
+// Exact: hit/miss, part and window decided on the exact value of the float inputs (filtered
+// signs falling back to expansion arithmetic) and t correctly rounded, for sphere, plane, disk,
+// parallelogram, triangle, cylinder and cone. Quadrics and transformed instances: error-free
+// products (difference-of-products discriminant, compensated dot and cross) and stable roots.
 struct accurate_policy {};
 
 inline constexpr fast_policy fast{};
@@ -20,7 +22,7 @@ inline constexpr accurate_policy accurate{};
 
 // The policy used by the overloads that take none, chosen by measurement (README, "Policies"):
 // `stable` costs the same as `fast` within noise and removes its cancellation; `accurate`
-// currently costs 1.4–3.9× `fast` with hardware FMA and 2–7.6× without.
+// currently costs ~7× `fast` on random rays.
 using default_policy = stable_policy;
 
 template <class P>
