@@ -19,6 +19,7 @@ void check_bound(Policy policy, const Prim& prim, const char* name, std::uint64_
     std::uniform_real_distribution<double> u(-1, 1), lg(-2, 2);
     int hits = 0, violations = 0, infinite = 0;
     double worst_ratio = 0;  // t_error / |t − t_exact|: how conservative (reported, not asserted)
+    double max_ulps = 0, max_rel = 0;  // the error itself, reported per primitive and policy
     std::vector<double> ratios;
     for (int i = 0; i < 20000; ++i) {
         const double scale = std::pow(10.0, lg(rng));
@@ -40,6 +41,9 @@ void check_bound(Policy policy, const Prim& prim, const char* name, std::uint64_
             ADD_FAILURE() << name << " ray " << i << ": |t - t_exact| = " << double(err) << " > t_error = " << h->t_error;
         }
         if (err > 0) ratios.push_back(double(quad(h->t_error) / err));
+        const quad ulp = quad(std::nextafter(h->t, std::numeric_limits<T>::infinity())) - quad(h->t);
+        max_ulps = std::max(max_ulps, double(err / ulp));
+        if (exact != 0) max_rel = std::max(max_rel, double(err / qabs(exact)));
         // The point bound follows from it: |point − exact point| per component.
         const Q3 p_exact = q3(o) + exact * q3(d);
         EXPECT_LE(double(qabs(quad(h->point.x) - p_exact.x)), double(h->point_error.x)) << name << " ray " << i;
@@ -48,9 +52,9 @@ void check_bound(Policy policy, const Prim& prim, const char* name, std::uint64_
     }
     std::sort(ratios.begin(), ratios.end());
     if (!ratios.empty()) worst_ratio = ratios.front();
-    std::printf("t_error %-22s %-6s %-8s hits=%5d violations=%d uncertified=%d bound/actual median=%.3g p99=%.3g min=%.3g\n", name,
+    std::printf("t_error %-22s %-6s %-8s hits=%5d max_ulps=%-8.3g max_rel=%-8.2g violations=%d uncertified=%d bound/actual median=%.3g p99=%.3g min=%.3g\n", name,
                 std::is_same_v<T, float> ? "float" : "double", ConfigNames::GetName<Config<T, Policy>>(0).c_str() + (std::is_same_v<T, float> ? 6 : 7),
-                hits, violations, infinite, ratios.empty() ? 0.0 : ratios[ratios.size() / 2],
+                hits, max_ulps, max_rel, violations, infinite, ratios.empty() ? 0.0 : ratios[ratios.size() / 2],
                 ratios.empty() ? 0.0 : ratios[ratios.size() * 99 / 100], worst_ratio);
     EXPECT_GT(hits, 1000) << name;
     EXPECT_LT(infinite, hits / 100 + 1) << name << ": the certificate should fail only near tangency";
