@@ -141,3 +141,46 @@ TYPED_TEST(AccurateContractTest, WindowAtTheRoot)
 
 }  // namespace
 }  // namespace rayq::test
+
+namespace rayq::test {
+namespace {
+
+// Found by the oracle campaign and the mesh sweep: near-parallel rays whose first root estimate
+// was far off made the exact search step past ±infinity and never return.
+TEST(AccurateRegression, NearParallelParallelogramReturnsTheExactHit)
+{
+    const Ray<float> r{{-0x1.170f9cp+2f, -0x1.5a47dap+3f, -0x1.0c0898p+2f}, {-0x1.0958dcp-2f, 0x1.492a48p-2f, 0x1.01b7aep-2f}};
+    const Parallelogram<float> p{{-0x1.63eef4p+2f, -0x1.7710fap+2f, 0x1.4c0988p-5f},
+                                 {-0x1.3b6c56p-2f, -0x1.66e19ep+1f, -0x1.417522p+1f},
+                                 {-0x1.aa5542p+1f, 0x1.7bffb4p-1f, 0x1.f51328p-3f}};
+    const auto h = intersect(accurate, r, p);
+    ASSERT_TRUE(h);  // exact (CGAL): t = 103377192535135393/12447128564869594 = 8.3053044…
+    EXPECT_EQ(h->t, 0x1.09c50ep+3f);  // the float nearest it (0.06 ulp away)
+}
+
+TEST(AccurateRegression, RayParallelToAConeGeneratorReturns)
+{
+    const Cone<double> c{{0, 0, 0}, 1, {0, 0, 1}, 0, Caps::none};
+    const Ray<double> r{{0x1.051fa249895dep-3, 0x1.702ef931960a2p-2, 0x1.535b82b7691cap+0},
+                        {-0x1.e4002e3b4ad37p-3, -0x1.553845550ce0cp-1, -0x1.6a09e667f3bccp-1}};
+    const auto h = intersect(accurate, r, c);
+    ASSERT_TRUE(h);
+    EXPECT_EQ(h->t, 0.5);
+}
+
+// A grazing ray whose exact discriminant is negative (CGAL): a miss. Whatever a float policy
+// answers, a finite t_error must not certify a root that does not exist.
+TEST(CertifiedBoundRegression, NoCertificateForANonexistentRoot)
+{
+    const Ray<double> r{{-0x1.2862d16477b03p+1, -0x1.1450bde7e272bp+1, -0x1.a56979a346506p+2},
+                        {0x1.054998883a7fdp-5, -0x1.11dd1cbb3c3cap-1, 0x1.67e44ec1b0402p-2}};
+    const Sphere<double> s{{-0x1.3317d052a1851p+1, -0x1.73bb6a8e00e9bp+1, -0x1.8fa80ad0cd60ep+2}, 0x1.68bcea9c45142p-3};
+    EXPECT_FALSE(intersect(accurate, r, s));
+    for (const auto& h : {intersect(fast, r, s), intersect(stable, r, s)})
+        if (h) {
+            EXPECT_FALSE(std::isfinite(h->t_error)) << "t = " << h->t << " certified within " << h->t_error;
+        }
+}
+
+}  // namespace
+}  // namespace rayq::test

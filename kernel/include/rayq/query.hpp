@@ -61,12 +61,13 @@ inline Hit<scalar_t<Prim>> make_hit(Policy policy, const Ray<scalar_t<Prim>>& ra
     using T = scalar_t<Prim>;
     const Vec3<T> p = detail::point_at(policy, ray.origin, ray.direction, c.t);
     Vec3<T> n = unit(outward_normal(prim, p, c.part));
+    // Face the incoming ray: outward where it enters, inward where it leaves. The side comes from
+    // the crossing (the root order; exact under the accurate policy), not from the sign of
+    // dot(n, d), which is noise at grazing incidence.
+    if (!c.entering) n = -n;
     // A point rounded onto a degenerate spot (the center of a far sphere whose t the fast policy
     // got wrong, a cone's apex) has no normal; the record still promises a unit one facing the ray.
     if (n.x == T(0) && n.y == T(0) && n.z == T(0)) n = -unit(ray.direction);
-    // Face the incoming ray. front_face comes from the crossing's root order instead, which
-    // stays right at grazing incidence where the sign of this dot product is noise.
-    if (rayq::dot(n, ray.direction) > T(0)) n = -n;
     // A posteriori, independent of how t was found: bounds on F(t), F'(t) and a certify how far
     // the exact root can be (detail::certify_root). The point then errs by t_error·|d| plus the
     // rounding of o + t·d (at most two roundings: γ(2)·(|o| + |t·d|), pbrt-v4 §6.8.5).

@@ -63,12 +63,6 @@ struct Residual {
     N f, df, a;
 };
 
-// A certified distance from t to the nearest root of the exact quadratic
-//   a·h² + F'(t)·h + F(t) = 0,   h = root − t,
-// given only bounds on the three exact coefficients. If |F'| >= D > 0 and D² >= 4·|a|max·|F|max
-// there is a real root with |h| <= 2|F|max/D (the smaller root of the quadratic in h, written in
-// the cancellation-free form 2F/(F' ± √…)). Otherwise, if |a| >= A > 0, every real root has
-// |h| <= |F'|max/A + √(|F|max/A) (Cauchy's bound). Otherwise no bound: +infinity.
 // The plane through `point` with normal n: F = (o + t·d − point)·n, linear.
 template <class N, class T>
 inline Residual<N> plane_residual(const Vec3<T>& point, const Vec3<N>& n, const Vec3<N>& o, const Vec3<N>& d, N t)
@@ -76,14 +70,24 @@ inline Residual<N> plane_residual(const Vec3<T>& point, const Vec3<N>& n, const 
     return {dot(o - lift<N>(point) + t * d, n), dot(d, n), N{T(0)}};
 }
 
+// A certified distance from t to a root of the exact quadratic
+//   a·h² + F'(t)·h + F(t) = 0,   h = root − t,
+// given only bounds on the three exact coefficients; finite only when a real root provably exists.
+// If |F'| >= D > 0 and D² >= 4·|a|max·|F|max, a root exists with |h| <= 2|F|max/D (the smaller root
+// of the quadratic in h, in the cancellation-free form 2F/(F' ± √…)). Otherwise, if a·F <= 0 is
+// certain (so the discriminant F'² − 4aF >= 0) and |a| >= A > 0, every root has
+// |h| <= |F'|max/A + √(|F|max/A) (Cauchy's bound). Otherwise (near tangency, where the exact
+// discriminant may be negative and the ray miss) no bound: +infinity.
 template <class T>
 inline T certify_root(const Residual<Bounded<T>>& r)
 {
     const T f_max = upper(r.f), a_max = upper(r.a), d_min = lower(r.df);
     if (d_min > T(0) && d_min * d_min * (T(1) - T(4) * unit_roundoff<T>) >= grow(T(4) * a_max * f_max))
         return grow(T(2) * f_max / d_min);
-    const T a_min = lower(r.a);
-    if (a_min > T(0)) return grow(grow(upper(r.df) / a_min) + grow(std::sqrt(grow(f_max / a_min))));
+    const T a_min = lower(r.a), f_min = lower(r.f);
+    const bool opposite = f_min > T(0) && (r.a.v > T(0)) != (r.f.v > T(0));
+    const bool f_zero = r.f.v == T(0) && r.f.e == T(0);
+    if (a_min > T(0) && (opposite || f_zero)) return grow(grow(upper(r.df) / a_min) + grow(std::sqrt(grow(f_max / a_min))));
     return std::numeric_limits<T>::infinity();
 }
 

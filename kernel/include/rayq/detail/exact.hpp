@@ -125,8 +125,8 @@ public:
     // A float estimate of the root (from the filter's coefficient values, stable q-form).
     T guess(int which) const
     {
-        const Residual<Bounded<T>> r = coef_(Bounded<T>{T(0)});
-        const T a = r.a.v, b = r.df.v, c = r.f.v;
+        const Residual<DoubleWord<T>> r = coef_(DoubleWord<T>{T(0)});
+        const T a = r.a.hi + r.a.lo, b = r.df.hi + r.df.lo, c = r.f.hi + r.f.lo;
         if (sign_a_ == 0) return -c / b;
         const T disc = std::max(b * b - T(4) * a * c, T(0));
         const T q = T(-0.5) * (b + std::copysign(std::sqrt(disc), b));
@@ -188,8 +188,10 @@ public:
         // Gallop away from guess in ulps until the root is bracketed, then bisect on the ordered bits.
         std::int64_t lo = key(guess), hi = lo, step = 1;
         const int toward = -c;  // +1: root above guess
+        constexpr T inf = std::numeric_limits<T>::infinity();
+        const std::int64_t last = key(toward > 0 ? inf : -inf);  // never step past ±infinity
         for (;;) {
-            const std::int64_t next = lo + toward * step;
+            const std::int64_t next = toward > 0 ? std::min(lo + step, last) : std::max(lo - step, last);
             const T y = value(next);
             const int cy = std::isfinite(y) ? at(y) : toward;
             if (cy == 0) return y;
