@@ -71,7 +71,10 @@ inline Hit<scalar_t<Prim>> make_hit(Policy policy, const Ray<scalar_t<Prim>>& ra
     // A posteriori, independent of how t was found: bounds on F(t), F'(t) and a certify how far
     // the exact root can be (detail::certify_root). The point then errs by t_error·|d| plus the
     // rounding of o + t·d (at most two roundings: γ(2)·(|o| + |t·d|), pbrt-v4 §6.8.5).
-    const T t_error = certify_root(residual(prim, exact(ray.origin), exact(ray.direction), Bounded<T>{c.t}, c.part));
+    const auto r = residual(prim, exact(ray.origin), exact(ray.direction), Bounded<T>{c.t}, c.part);
+    T t_error = certify_root(r);
+    // The certified root must also provably lie inside the window, or it may not be this hit.
+    if (!(c.t - t_error > ray.tmin && c.t + t_error < ray.tmax)) t_error = std::numeric_limits<T>::infinity();
     const T g2 = T(2) * unit_roundoff<T> / (T(1) - T(2) * unit_roundoff<T>);
     const auto axis_error = [&](T o, T d) { return grow(t_error * std::abs(d) + g2 * (std::abs(o) + std::abs(c.t * d))); };
     const Vec3<T> point_error{axis_error(ray.origin.x, ray.direction.x), axis_error(ray.origin.y, ray.direction.y),
