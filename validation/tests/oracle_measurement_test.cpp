@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <set>
 #include <tuple>
 #include <type_traits>
 
@@ -69,6 +70,32 @@ TEST(OracleMeasurement, OracleIsSelfConsistentOnEveryFixture)
             },
             f.input);
     }
+}
+
+// Issue 4's contract for rayq::accurate on the primitives in scope, on every checked-in fixture
+// family, float and double: hit/miss, part and front face agree with the exact oracle; t is
+// within 1 ulp (faithful; the kernel rounds correctly, so within half an ulp); no certified
+// bound is violated.
+TEST(OracleMeasurement, AccurateContractOnEveryFixture)
+{
+    const std::set<std::string> in_scope = {"sphere", "plane", "disk", "parallelogram", "triangle", "cylinder", "cone"};
+    std::size_t checked = 0, hits = 0;
+    for (const Fixture& f : fixtures()) {
+        if (!in_scope.count(primitive_name(f.input))) continue;
+        const Measurement m = measure_all_policies(truth_of(f.input), f.input)[2];
+        ASSERT_TRUE(m.defined) << format_fixture(f);
+        ++checked;
+        EXPECT_TRUE(m.hit_agrees) << "accurate disagrees on hit/miss:\n" << format_fixture(f);
+        EXPECT_FALSE(m.bound_violated) << "accurate's t_error is violated:\n" << format_fixture(f);
+        if (!m.both_hit) continue;
+        ++hits;
+        EXPECT_TRUE(m.part_agrees) << format_fixture(f);
+        EXPECT_TRUE(m.front_face_agrees) << format_fixture(f);
+        EXPECT_TRUE(m.faithful) << format_fixture(f);
+        EXPECT_LE(m.ulps, 0.5) << format_fixture(f);
+    }
+    EXPECT_GT(checked, 200u);
+    EXPECT_GT(hits, 100u);
 }
 
 TEST(OracleMeasurement, KernelAgainstOracleOnEveryFixture)
