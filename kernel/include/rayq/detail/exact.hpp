@@ -58,6 +58,17 @@ struct MidpointLine {
     Residual<N> operator()(N) const { return {N{-a} + N{-b}, N{T(2)}, N{T(0)}}; }
 };
 
+// sign(F(x)) for a quadratic F given by coefficients at t = 0, at x = −g/dg: sign(c·dg² − b·g·dg + a·g²).
+template <class T, class Coef, class Line>
+inline int quadratic_sign_at(const Coef& coef, const Line& x)
+{
+    return adaptive_sign<T>([&](auto zero) {
+        const auto r = coef(zero);
+        const auto l = x(zero);
+        return r.f * l.df * l.df - r.df * l.f * l.df + r.a * l.f * l.f;
+    });
+}
+
 // The quadratic a·t² + b·t + c along the ray, whose coefficients `coef` computes in any number
 // type (a primitive's residual at t = 0). Signs of a and of the discriminant are decided once.
 template <class T, class Coef>
@@ -83,16 +94,9 @@ public:
     int sign_b() const { return sign_b_; }        // linear case
     int sign_c() const { return sign_c_; }        // constant case
 
-    // sign of the quadratic at x = −g/dg: sign(c·dg² − b·g·dg + a·g²), dg² > 0.
+    // sign of the quadratic at x = −g/dg.
     template <class Line>
-    int sign_at(const Line& x) const
-    {
-        return adaptive_sign<T>([&](auto zero) {
-            const auto r = coef_(zero);
-            const auto l = x(zero);
-            return r.f * l.df * l.df - r.df * l.f * l.df + r.a * l.f * l.f;
-        });
-    }
+    int sign_at(const Line& x) const { return quadratic_sign_at<T>(coef_, x); }
 
     // sign(x − r) for r the smaller (which = 0) or larger (which = 1) real root, x = −g/dg.
     // Requires real roots (sign_disc >= 0) or, when a = 0, b ≠ 0 (then which is ignored).

@@ -274,15 +274,4 @@ inline bool exact_planar_inside(const Ray<T>& ray, const Edges& edges, int sign_
            nonneg([&](auto z) { const auto m = numerators(z); return m.det - m.beta; });
 }
 
-// sign(F(x)) for a quadratic F given by coefficients at t = 0, at x = −g/dg: sign(c·dg² − b·g·dg + a·g²).
-template <class T, class Coef, class Line>
-inline int quadratic_sign_at(const Coef& coef, const Line& x)
-{
-    return adaptive_sign<T>([&](auto zero) {
-        const auto r = coef(zero);
-        const auto l = x(zero);
-        return r.f * l.df * l.df - r.df * l.f * l.df + r.a * l.f * l.f;
-    });
-}
-
 }  // namespace rayq::detail
