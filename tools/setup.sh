@@ -9,6 +9,7 @@ packages=(
   libbenchmark-dev                   # benchmarks (tools/bench)
   libcgal-dev libgmp-dev libmpfr-dev libboost-dev   # validation/oracle: exact arithmetic
   libopenmesh-dev libeigen3-dev      # validation/mesh: tessellations
+  nlohmann-json3-dev                 # validation/stats, the report: JSON summaries
 )
 
 missing=()
