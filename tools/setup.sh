@@ -10,6 +10,8 @@ packages=(
   libcgal-dev libgmp-dev libmpfr-dev libboost-dev   # validation/oracle: exact arithmetic
   libopenmesh-dev libeigen3-dev      # validation/mesh: tessellations
   nlohmann-json3-dev                 # validation/stats, the report: JSON summaries
+  gnuplot-nox                        # the report's plots (SVG)
+  chromium                           # the report's headless-browser test
 )
 
 missing=()
