@@ -24,6 +24,8 @@ struct Settings {
     std::uint64_t seed = 1;
     std::size_t oracle_cases = 0;     // generated cases per primitive and number type
     std::size_t oracle_chunk = 0;     // cases per work item
+    std::size_t oracle_csv_cases = 0; // per-case CSV rows for the first this many cases of each primitive and type
+    std::vector<std::string> oracle_primitives;  // empty: every primitive the generator knows
     int mesh_rays = 0;
     int mesh_max_n = 0;
     std::string precision_preset;     // the precision sweeps' own preset name

@@ -79,8 +79,10 @@ std::string key_text(const Key& k)
 template <class T>
 double t_error_of(const std::optional<Hit<T>>& h) { return h ? static_cast<double>(h->t_error) : 0.0; }
 
-void measure_case(const oracle::Fixture& f, std::map<Key, Cell>& cells, std::string& csv)
+void measure_case(const oracle::Fixture& f, std::map<Key, Cell>& cells, std::string* csv_or_null)
 {
+    std::string ignored;
+    std::string& csv = csv_or_null ? *csv_or_null : ignored;
     const oracle::Truth truth = oracle::truth_of(f.input);
     const oracle::ExactHit& exact = truth.first_hit();
     if (!exact.defined) return;
@@ -133,6 +135,8 @@ std::vector<Item> plan(const Settings& s)
 {
     std::vector<Item> items;
     for (const std::string& prim : oracle::generated_primitives())
+        if (s.oracle_primitives.empty() ||
+            std::find(s.oracle_primitives.begin(), s.oracle_primitives.end(), prim) != s.oracle_primitives.end())
         for (const char* type : {"float", "double"})
             for (std::size_t first = 0; first < s.oracle_cases; first += s.oracle_chunk) {
                 const std::size_t count = std::min(s.oracle_chunk, s.oracle_cases - first);
@@ -154,7 +158,7 @@ json run(const Settings& s, const Item& item, std::string& csv)
 {
     std::map<Key, Cell> cells;
     if (item.spec.contains("file")) {
-        for (const auto& f : oracle::load_fixtures(item.spec.at("file").get<std::string>())) measure_case(f, cells, csv);
+        for (const auto& f : oracle::load_fixtures(item.spec.at("file").get<std::string>())) measure_case(f, cells, &csv);
     } else {
         const std::string prim = item.spec.at("primitive");
         const oracle::Scalar type = scalar_named(item.spec.at("type"));
@@ -163,7 +167,7 @@ json run(const Settings& s, const Item& item, std::string& csv)
         // The same case sequence as oracle::generate_cases(prim, type, N, seed): round robin.
         for (std::size_t i = first; i < first + count; ++i)
             measure_case(oracle::generate(prim, type, families[i % families.size()], s.seed, i / families.size()),
-                         cells, csv);
+                         cells, i < s.oracle_csv_cases ? &csv : nullptr);
     }
     json out = json::object();
     for (const auto& [k, c] : cells) out[key_text(k)] = c.to_json();
@@ -182,7 +186,8 @@ json row_json(const Key& k, const Cell& c)
             {"part_agree_pct", percent(c.part_agree, c.both_hit)}, {"front_agree_pct", percent(c.front_agree, c.both_hit)},
             {"faithful_pct", percent(c.faithful, c.both_hit)}, {"max_ulp", c.ulps.max()},
             {"p99_ulp", c.ulps.quantile(0.99)}, {"median_ulp", c.ulps.quantile(0.5)},
-            {"kernel_hits", c.kernel_hits}, {"bound_violations", c.violations}, {"uncertified", c.uncertified},
+            {"kernel_hits", c.kernel_hits}, {"bounded_pct", percent(c.bounded, c.kernel_hits)},
+            {"bound_violations", c.violations}, {"uncertified", c.uncertified},
             {"bound_ratio_median", c.bound_ratio.quantile(0.5)}, {"bound_ratio_p99", c.bound_ratio.quantile(0.99)},
             {"fallback_pct", percent(c.fallback_cases, c.cases)}, {"max_angle", c.max_angle},
             {"ulps", c.ulps.to_json()}};
@@ -233,14 +238,14 @@ json reduce(const Settings&, const std::vector<json>& results)
         metrics[m + "cases"] = c.cases;
     }
     const json columns = {"primitive", "policy", "type", "family", "cases", "hit %", "part %", "front %", "faithful %",
-                          "max ulp", "p99 ulp", "bound violations / hits", "bound/actual median", "bound/actual p99",
+                          "max ulp", "p99 ulp", "bound violations / hits", "finite bound %", "bound/actual median", "bound/actual p99",
                           "fallback %"};
     auto table_rows = [](const json& source) {
         json out = json::array();
         for (const json& r : source)
             out.push_back({r["primitive"], r["policy"], r["type"], r["family"], r["cases"], r["hit_agree_pct"],
                            r["part_agree_pct"], r["front_agree_pct"], r["faithful_pct"], r["max_ulp"], r["p99_ulp"],
-                           r["bound_violations"].dump() + " / " + r["kernel_hits"].dump(), r["bound_ratio_median"],
+                           r["bound_violations"].dump() + " / " + r["kernel_hits"].dump(), r["bounded_pct"], r["bound_ratio_median"],
                            r["bound_ratio_p99"], r["fallback_pct"]});
         return out;
     };

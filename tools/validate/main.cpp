@@ -1,5 +1,6 @@
 // rayq-validate — rayq's main job (issue 8): runs the validation campaigns and writes a
 // self-contained HTML report, a JSON summary and the raw data; exits non-zero when a gate fails.
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
@@ -31,6 +32,7 @@ const char* usage =
     "  --seed S              seed of every generated case (default 1); same seed, same results\n"
     "  --only C / --skip C   run only / skip campaign C (repeatable; see --list)\n"
     "  --oracle-cases N      generated oracle cases per primitive and number type\n"
+    "  --primitive P         oracle campaign on these primitives only (repeatable; default all)\n"
     "  --mesh-rays N --mesh-max-n N   mesh cross-check size\n"
     "  --bench-min-time S    seconds per benchmark repetition\n"
     "  --fixtures DIR        curated oracle fixture files measured too (default: the checked-in ones)\n"
@@ -116,6 +118,7 @@ int main_throwing(int argc, char** argv)
     std::string preset = "default", gates_file = RAYQ_DEFAULT_GATES, out = "rayq-report";
     std::string fixtures = RAYQ_DEFAULT_FIXTURES;
     std::set<std::string> only, skip;
+    std::vector<std::string> primitives;
     std::vector<std::pair<std::string, std::string>> overrides;
     int shard = 0, shards = 1;
     bool sharded = false, fresh = false, merging = false;
@@ -138,6 +141,7 @@ int main_throwing(int argc, char** argv)
         else if (a == "--no-fixtures") fixtures.clear();
         else if (a == "--fresh") fresh = true;
         else if (a == "--only") only.insert(need(i, argc, argv));
+        else if (a == "--primitive") primitives.push_back(need(i, argc, argv));
         else if (a == "--skip") skip.insert(need(i, argc, argv));
         else if (a == "--seed" || a == "--oracle-cases" || a == "--mesh-rays" || a == "--mesh-max-n" || a == "--bench-min-time")
             overrides.emplace_back(a, need(i, argc, argv));
@@ -196,6 +200,11 @@ int main_throwing(int argc, char** argv)
         throw UsageError(e.what());
     }
     o.settings.fixtures_dir = fixtures;
+    for (const auto& p : primitives)
+        if (std::find(rayq::oracle::generated_primitives().begin(), rayq::oracle::generated_primitives().end(), p) ==
+            rayq::oracle::generated_primitives().end())
+            throw UsageError("--primitive: no primitive named '" + p + "' (sphere, plane, disk, parallelogram, triangle, cylinder, cone, quadric, transformed-…)");
+    o.settings.oracle_primitives = primitives;
     if (!fixtures.empty()) {
         if (!std::filesystem::is_directory(fixtures))
             throw UsageError("--fixtures: '" + fixtures + "' is not a readable directory");

@@ -32,13 +32,13 @@ Settings Settings::preset_named(const std::string& name)
     Settings s;
     s.preset = name;
     if (name == "quick") {  // about a minute on 2 cores
-        s.oracle_cases = 1000; s.oracle_chunk = 1000; s.mesh_rays = 400; s.mesh_max_n = 32;
+        s.oracle_cases = 1000; s.oracle_chunk = 1000; s.oracle_csv_cases = 1000; s.mesh_rays = 400; s.mesh_max_n = 32;
         s.precision_preset = "quick"; s.bench_min_time = 0.01;
     } else if (name == "default") {  // under 10 minutes on 2 cores
-        s.oracle_cases = 10000; s.oracle_chunk = 2500; s.mesh_rays = 3000; s.mesh_max_n = 128;
+        s.oracle_cases = 10000; s.oracle_chunk = 2500; s.oracle_csv_cases = 10000; s.mesh_rays = 3000; s.mesh_max_n = 128;
         s.precision_preset = "default"; s.bench_min_time = 0.1;
     } else if (name == "full") {  // the big campaign: 10^6 cases per primitive and type
-        s.oracle_cases = 1000000; s.oracle_chunk = 20000; s.mesh_rays = 20000; s.mesh_max_n = 512;
+        s.oracle_cases = 1000000; s.oracle_chunk = 20000; s.oracle_csv_cases = 10000; s.mesh_rays = 20000; s.mesh_max_n = 512;
         s.precision_preset = "full"; s.bench_min_time = 0.5;
     } else {
         throw std::invalid_argument("unknown preset '" + name + "' (expected quick, default or full)");
@@ -49,6 +49,7 @@ Settings Settings::preset_named(const std::string& name)
 json Settings::to_json() const
 {
     return {{"preset", preset}, {"seed", seed}, {"oracle_cases", oracle_cases}, {"oracle_chunk", oracle_chunk},
+            {"oracle_csv_cases", oracle_csv_cases}, {"oracle_primitives", oracle_primitives},
             {"mesh_rays", mesh_rays}, {"mesh_max_n", mesh_max_n}, {"precision_preset", precision_preset},
             {"bench_min_time", bench_min_time}, {"fixtures_dir", fixtures_dir}};
 }
@@ -57,7 +58,8 @@ Settings Settings::from_json(const json& j)
 {
     Settings s;
     s.preset = j.at("preset"); s.seed = j.at("seed"); s.oracle_cases = j.at("oracle_cases");
-    s.oracle_chunk = j.at("oracle_chunk"); s.mesh_rays = j.at("mesh_rays"); s.mesh_max_n = j.at("mesh_max_n");
+    s.oracle_chunk = j.at("oracle_chunk"); s.oracle_csv_cases = j.at("oracle_csv_cases");
+    s.oracle_primitives = j.at("oracle_primitives").get<std::vector<std::string>>(); s.mesh_rays = j.at("mesh_rays"); s.mesh_max_n = j.at("mesh_max_n");
     s.precision_preset = j.at("precision_preset"); s.bench_min_time = j.at("bench_min_time");
     s.fixtures_dir = j.at("fixtures_dir");
     return s;

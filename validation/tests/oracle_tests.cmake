@@ -17,7 +17,8 @@ if(TARGET rayq::oracle)
     ${CMAKE_CURRENT_LIST_DIR}/oracle_measurement_test.cpp)
   target_link_libraries(rayq_oracle_tests PRIVATE rayq::oracle rayq::oracle_harness GTest::gtest_main)
   target_compile_definitions(rayq_oracle_tests PRIVATE RAYQ_ORACLE_FIXTURES="${PROJECT_SOURCE_DIR}/fixtures/oracle"
-                                                       RAYQ_FIXTURES_README="${PROJECT_SOURCE_DIR}/fixtures/README.md")
+                                                       RAYQ_FIXTURES_README="${PROJECT_SOURCE_DIR}/fixtures/README.md"
+                                                       RAYQ_ORACLE_REPRODUCERS="${PROJECT_SOURCE_DIR}/fixtures/oracle-reproducers")
   if(CMAKE_CXX_COMPILER_ID MATCHES "GNU|Clang")
     target_compile_options(rayq_oracle_tests PRIVATE -Wall -Wextra -Wpedantic)
   endif()

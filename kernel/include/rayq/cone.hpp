@@ -63,6 +63,13 @@ inline Crossings<T> crossings(Policy policy, const Ray<T>& ray, const Cone<T>& c
 
 // The side in rational form |(q + t·d) × A|²·|A|² − (r0·|A|² + (r1 − r0)·(q + t·d)·A)² (no square
 // root of |A|²), or the cap's plane, with certified bounds (for Hit::t_error).
+// As the cylinder's (detail::axial_trim_margins), with each cap's own radius.
+template <class T, class N>
+inline detail::Margins<N> trim_margins(const Cone<T>& cone, const Vec3<N>& o, const Vec3<N>& d, N t, Part part)
+{
+    return detail::axial_trim_margins(detail::lift<N>(cone.p0), detail::lift<N>(cone.p1), N{cone.r0}, N{cone.r1}, o, d, t, part);
+}
+
 template <class N, class T>
 inline detail::Residual<N> residual(const Cone<T>& cone, const Vec3<N>& o, const Vec3<N>& d, N t, Part part)
 {

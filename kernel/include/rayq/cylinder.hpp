@@ -60,6 +60,14 @@ inline Crossings<T> crossings(Policy policy, const Ray<T>& ray, const Cylinder<T
 }
 
 // The side |(q + t·d) × A|² − r²|A|², or the cap's plane, with certified bounds (for Hit::t_error).
+// The side between the end planes: 0 <= (p − p0)·A <= |A|², A = p1 − p0; a cap within the radius:
+// r²|A|² − |(p − p_end) × A|² >= 0.
+template <class T, class N>
+inline detail::Margins<N> trim_margins(const Cylinder<T>& cyl, const Vec3<N>& o, const Vec3<N>& d, N t, Part part)
+{
+    return detail::axial_trim_margins(detail::lift<N>(cyl.p0), detail::lift<N>(cyl.p1), N{cyl.radius}, N{cyl.radius}, o, d, t, part);
+}
+
 template <class N, class T>
 inline detail::Residual<N> residual(const Cylinder<T>& cyl, const Vec3<N>& o, const Vec3<N>& d, N t, Part part)
 {

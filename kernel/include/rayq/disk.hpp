@@ -46,6 +46,17 @@ inline Crossings<T> crossings(Policy policy, const Ray<T>& ray, const Disk<T>& d
 }
 
 // The supporting plane, with certified bounds (for Hit::t_error).
+// On the disk: r² − |p − c|² >= 0 at the exact point.
+template <class T, class N>
+inline detail::Margins<N> trim_margins(const Disk<T>& disk, const Vec3<N>& o, const Vec3<N>& d, N t, Part)
+{
+    const Vec3<N> q = o + t * d - detail::lift<N>(disk.center);
+    const N r{disk.radius};
+    detail::Margins<N> m;
+    m.add(r * r - dot(q, q));
+    return m;
+}
+
 template <class N, class T>
 inline detail::Residual<N> residual(const Disk<T>& p, const Vec3<N>& o, const Vec3<N>& d, N t, Part)
 {

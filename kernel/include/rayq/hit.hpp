@@ -18,10 +18,13 @@ struct Hit {
     Vec3<T> normal;   // unit, facing the incoming ray: dot(normal, direction) <= 0
     bool front_face;  // the ray arrives from outside (the side the outward normal points to)
     Part part;
-    // Certified: the exact intersection parameter of the (exactly represented) inputs lies in
-    // [t − t_error, t + t_error].
+    // Certified: the exact first hit of the (exactly represented) inputs lies in
+    // [t − t_error, t + t_error]; infinite when that cannot be proven (near a rim, an edge, the
+    // window's start, tangency).
     T t_error = std::numeric_limits<T>::infinity();
-    // Certified, per component: |point − exact point| (the exact point at the exact t).
+    // Certified, per component: |point − exact point|, the exact point being where the line meets
+    // the exact surface of `part` near t (so spawn() can leave that surface even when t_error,
+    // which also certifies that this crossing is the first hit, is infinite).
     Vec3<T> point_error = {std::numeric_limits<T>::infinity(), std::numeric_limits<T>::infinity(),
                            std::numeric_limits<T>::infinity()};
 };

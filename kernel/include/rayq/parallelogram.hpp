@@ -41,6 +41,22 @@ inline Crossings<T> crossings(Policy policy, const Ray<T>& ray, const Parallelog
 }
 
 // The supporting plane, with certified bounds (for Hit::t_error).
+// Inside: p − corner = u·e0 + v·e1 with u, v in [0, 1]; U = ((p − corner) × e1)·n = u|n|² and
+// V = (e0 × (p − corner))·n = v|n|², n = e0 × e1, so the margins need no division.
+template <class T, class N>
+inline detail::Margins<N> trim_margins(const Parallelogram<T>& pg, const Vec3<N>& o, const Vec3<N>& d, N t, Part)
+{
+    const Vec3<N> e0 = detail::lift<N>(pg.edge0), e1 = detail::lift<N>(pg.edge1), n = cross(e0, e1);
+    const Vec3<N> q = o + t * d - detail::lift<N>(pg.corner);
+    const N u = dot(cross(q, e1), n), v = dot(cross(e0, q), n), nn = dot(n, n);
+    detail::Margins<N> m;
+    m.add(u);
+    m.add(nn - u);
+    m.add(v);
+    m.add(nn - v);
+    return m;
+}
+
 template <class N, class T>
 inline detail::Residual<N> residual(const Parallelogram<T>& p, const Vec3<N>& o, const Vec3<N>& d, N t, Part)
 {

@@ -37,6 +37,13 @@ inline Crossings<T> crossings(Policy policy, const Ray<T>& ray, const Plane<T>& 
 }
 
 // The supporting plane, with certified bounds (for Hit::t_error).
+// Untrimmed: every root of the surface is a hit.
+template <class T, class N>
+inline detail::Margins<N> trim_margins(const Plane<T>&, const Vec3<N>&, const Vec3<N>&, N, Part)
+{
+    return {};
+}
+
 template <class N, class T>
 inline detail::Residual<N> residual(const Plane<T>& p, const Vec3<N>& o, const Vec3<N>& d, N t, Part)
 {

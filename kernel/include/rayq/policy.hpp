@@ -25,6 +25,11 @@ inline constexpr accurate_policy accurate{};
 // currently costs ~7× `fast` on random rays.
 using default_policy = stable_policy;
 
+// Whether `accurate` decides hit/miss and part exactly for a primitive type: true for the seven
+// primitives of its contract; quadric.hpp and transformed.hpp specialize it to false.
+template <class Prim>
+struct accurate_decides_exactly : std::true_type {};
+
 template <class P>
 inline constexpr bool is_policy_v = std::is_same_v<P, fast_policy> || std::is_same_v<P, stable_policy> ||
                                     std::is_same_v<P, accurate_policy>;

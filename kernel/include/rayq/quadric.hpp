@@ -160,6 +160,25 @@ inline Crossings<T> crossings(Policy policy, const Ray<T>& ray, const Quadric<T>
 }
 
 // F(o + t·d), ∇F·d and F₂(d), with certified bounds (for Hit::t_error).
+// Inside the clip box: p − lo >= 0 and hi − p >= 0 for each finite bound.
+template <class T, class N>
+inline detail::Margins<N> trim_margins(const Quadric<T>& q, const Vec3<N>& o, const Vec3<N>& d, N t, Part)
+{
+    const Vec3<N> p = o + t * d;
+    const N pc[3] = {p.x, p.y, p.z};
+    const T lo[3] = {q.clip.lo.x, q.clip.lo.y, q.clip.lo.z}, hi[3] = {q.clip.hi.x, q.clip.hi.y, q.clip.hi.z};
+    detail::Margins<N> m;
+    for (int i = 0; i < 3; ++i) {
+        if (std::isfinite(lo[i])) m.add(pc[i] - N{lo[i]});
+        if (std::isfinite(hi[i])) m.add(N{hi[i]} - pc[i]);
+    }
+    return m;
+}
+
+// Quadrics are outside the accurate policy's exact contract (issue 4): their trims are checked.
+template <class T>
+struct accurate_decides_exactly<Quadric<T>> : std::false_type {};
+
 template <class N, class T>
 inline detail::Residual<N> residual(const Quadric<T>& q, const Vec3<N>& o, const Vec3<N>& d, N t, Part)
 {

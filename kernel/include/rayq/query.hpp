@@ -10,6 +10,7 @@
 // cheap core (crossings) is shared, and only intersect() builds the full hit record.
 #pragma once
 
+#include <algorithm>
 #include <optional>
 #include <type_traits>
 
@@ -73,13 +74,55 @@ inline Hit<scalar_t<Prim>> make_hit(Policy policy, const Ray<scalar_t<Prim>>& ra
     // rounding of o + t·d (at most two roundings: γ(2)·(|o| + |t·d|), pbrt-v4 §6.8.5).
     const auto r = residual(prim, exact(ray.origin), exact(ray.direction), Bounded<T>{c.t}, c.part);
     T t_error = certify_root(r);
+    const T root_error = t_error;  // the crossing's own bound: what the point's error needs
     // The certified root must also provably lie inside the window, or it may not be this hit.
     if (!(c.t - t_error > ray.tmin && c.t + t_error < ray.tmax)) t_error = std::numeric_limits<T>::infinity();
+    // ... and on the trimmed part (inside the triangle, within the side's height, the cap's
+    // radius, the clip box): a root of the untrimmed surface near a rim may belong to no hit at
+    // all. Policies whose trim decisions are exact have nothing to prove here.
+    constexpr bool exact_decisions = std::is_same_v<Policy, accurate_policy> && accurate_decides_exactly<Prim>::value;
+    if (!exact_decisions && std::isfinite(t_error) &&
+        !certainly_within(trim_margins(prim, exact(ray.origin), exact(ray.direction), Bounded<T>{c.t, t_error}, c.part)))
+        t_error = std::numeric_limits<T>::infinity();
     const T g2 = T(2) * unit_roundoff<T> / (T(1) - T(2) * unit_roundoff<T>);
-    const auto axis_error = [&](T o, T d) { return grow(t_error * std::abs(d) + g2 * (std::abs(o) + std::abs(c.t * d))); };
+    const auto axis_error = [&](T o, T d) { return grow(root_error * std::abs(d) + g2 * (std::abs(o) + std::abs(c.t * d))); };
     const Vec3<T> point_error{axis_error(ray.origin.x, ray.direction.x), axis_error(ray.origin.y, ray.direction.y),
                               axis_error(ray.origin.z, ray.direction.z)};
     return {c.t, p, n, c.entering, c.part, t_error, point_error};
+}
+
+// A crossing the window excluded (t <= tmin) whose exact root may nevertheless lie inside it:
+// then the exact first hit may be that root, anywhere in (tmin, t of the reported hit), and the
+// reported hit's bound must reach back to tmin. Policies with exact decisions have excluded it
+// exactly.
+template <class Policy, class Prim>
+inline bool may_enter_window(Policy, const Ray<scalar_t<Prim>>& ray, const Prim& prim, const Crossing<scalar_t<Prim>>& c)
+{
+    using T = scalar_t<Prim>;
+    if (std::is_same_v<Policy, accurate_policy> && accurate_decides_exactly<Prim>::value) return false;
+    if (!(c.t <= ray.tmin)) return false;
+    const T e = certify_root(residual(prim, exact(ray.origin), exact(ray.direction), Bounded<T>{c.t}, c.part));
+    return !(c.t + e <= ray.tmin);
+}
+
+// The first crossing in the window as a hit; its bound covers every earlier crossing that may
+// exactly lie in the window.
+template <class Policy, class Prim>
+inline Hit<scalar_t<Prim>> first_hit(Policy policy, const Ray<scalar_t<Prim>>& ray, const Prim& prim,
+                                     const Crossing<scalar_t<Prim>>& c, bool earlier_may_count)
+{
+    using T = scalar_t<Prim>;
+    Hit<T> h = make_hit(policy, ray, prim, c);
+    // A first hit that leaves the surface says the window starts inside (F(tmin) < 0): if that is
+    // not certain, an entering root before it may have been lost (cancellation in the fast
+    // formula, a far-away primitive in float).
+    if (!(std::is_same_v<Policy, accurate_policy> && accurate_decides_exactly<Prim>::value) && !c.entering &&
+        c.part == Part::surface && std::isfinite(ray.tmin)) {
+        const Bounded<T> f = residual(prim, exact(ray.origin), exact(ray.direction), Bounded<T>{ray.tmin}, Part::surface).f;
+        earlier_may_count = earlier_may_count || !(f.v < T(0) && lower(f) > T(0));
+    }
+    if (earlier_may_count) h.t_error = std::max(h.t_error, grow(c.t - ray.tmin));
+    return h;
 }
 
 template <class Prim>
@@ -94,8 +137,11 @@ template <class Policy, class Prim, std::enable_if_t<is_policy_v<Policy> && is_p
 inline std::optional<Hit<scalar_t<Prim>>> intersect(Policy policy, const Ray<scalar_t<Prim>>& ray, const Prim& prim)
 {
     if (!detail::accepts(ray, prim)) return std::nullopt;
-    for (const auto& c : crossings(policy, ray, prim))
-        if (detail::in_window(ray, c.t)) return detail::make_hit(policy, ray, prim, c);
+    bool earlier_may_count = false;
+    for (const auto& c : crossings(policy, ray, prim)) {
+        if (detail::in_window(ray, c.t)) return detail::first_hit(policy, ray, prim, c, earlier_may_count);
+        earlier_may_count = earlier_may_count || detail::may_enter_window(policy, ray, prim, c);
+    }
     return std::nullopt;
 }
 
@@ -135,8 +181,17 @@ inline Passages<scalar_t<Prim>> intersect_all(Policy policy, const Ray<scalar_t<
 {
     Passages<scalar_t<Prim>> out;
     if (!detail::accepts(ray, prim)) return out;
-    for (const auto& c : crossings(policy, ray, prim))
-        if (detail::in_window(ray, c.t)) out.item[out.count++] = {detail::make_hit(policy, ray, prim, c), c.entering};
+    bool earlier_may_count = false;
+    for (const auto& c : crossings(policy, ray, prim)) {
+        if (detail::in_window(ray, c.t)) {
+            out.item[out.count] = {out.count == 0 ? detail::first_hit(policy, ray, prim, c, earlier_may_count)
+                                                  : detail::make_hit(policy, ray, prim, c),
+                                   c.entering};
+            ++out.count;
+        } else {
+            earlier_may_count = earlier_may_count || detail::may_enter_window(policy, ray, prim, c);
+        }
+    }
     return out;
 }
 

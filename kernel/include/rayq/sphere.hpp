@@ -40,6 +40,13 @@ inline Crossings<T> crossings(Policy policy, const Ray<T>& ray, const Sphere<T>&
 }
 
 // |o + t·d − c|² − r² with certified bounds (for Hit::t_error).
+// Untrimmed: every root of the surface is a hit.
+template <class T, class N>
+inline detail::Margins<N> trim_margins(const Sphere<T>&, const Vec3<N>&, const Vec3<N>&, N, Part)
+{
+    return {};
+}
+
 template <class N, class T>
 inline detail::Residual<N> residual(const Sphere<T>& s, const Vec3<N>& o, const Vec3<N>& d, N t, Part)
 {

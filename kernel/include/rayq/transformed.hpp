@@ -191,6 +191,20 @@ inline detail::Residual<detail::Bounded<T>> residual(const Transformed<Prim, T>&
                     part);
 }
 
+// The object's trims along the object-space ray (mapped as for the residual).
+template <class Prim, class T>
+inline detail::Margins<detail::Bounded<T>> trim_margins(const Transformed<Prim, T>& x, const Vec3<detail::Bounded<T>>& o,
+                                                        const Vec3<detail::Bounded<T>>& d, detail::Bounded<T> t, Part part)
+{
+    const T defect = detail::inverse_defect(x.to_object, x.to_world);
+    return trim_margins(x.object, detail::map_bounded(x.to_object, o, true, defect),
+                        detail::map_bounded(x.to_object, d, false, defect), t, part);
+}
+
+// The transform rounds: accurate's decisions on transformed instances are not exact (issue 4).
+template <class Prim, class T>
+struct accurate_decides_exactly<Transformed<Prim, T>> : std::false_type {};
+
 // Normals go back through the inverse transpose; the entering flag needs no change, since an
 // affine bijection maps the solid's inside to the inside.
 template <class Prim, class T>

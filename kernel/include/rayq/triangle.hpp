@@ -42,6 +42,20 @@ inline Crossings<T> crossings(Policy policy, const Ray<T>& ray, const Triangle<T
 }
 
 // The supporting plane, with certified bounds (for Hit::t_error).
+// Inside the triangle: each edge function ((v_{i+1} − v_i) × (p − v_i))·n >= 0, n = (b − a) × (c − a)
+// (twice the signed sub-triangle areas times |n|: the barycentrics without a division).
+template <class T, class N>
+inline detail::Margins<N> trim_margins(const Triangle<T>& tri, const Vec3<N>& o, const Vec3<N>& d, N t, Part)
+{
+    const Vec3<N> a = detail::lift<N>(tri.a), b = detail::lift<N>(tri.b), c = detail::lift<N>(tri.c);
+    const Vec3<N> p = o + t * d, n = cross(b - a, c - a);
+    detail::Margins<N> m;
+    m.add(dot(cross(b - a, p - a), n));
+    m.add(dot(cross(c - b, p - b), n));
+    m.add(dot(cross(a - c, p - c), n));
+    return m;
+}
+
 template <class N, class T>
 inline detail::Residual<N> residual(const Triangle<T>& p, const Vec3<N>& o, const Vec3<N>& d, N t, Part)
 {

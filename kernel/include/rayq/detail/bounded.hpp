@@ -70,6 +70,30 @@ inline Residual<N> plane_residual(const Vec3<T>& point, const Vec3<N>& n, const 
     return {dot(o - lift<N>(point) + t * d, n), dot(d, n), N{T(0)}};
 }
 
+// The conditions an exact hit point must meet to lie on the trimmed part, each as a number that
+// must be >= 0: the edges of a flat primitive, the height range of an axial side, a cap's radius,
+// a quadric's clip box (at most six). A posteriori, like the residual: evaluated at t with t's own
+// bound, so they speak for the exact root, not only for the computed point.
+template <class N>
+struct Margins {
+    int count = 0;
+    N m[6];
+    void add(N v) { m[count++] = v; }
+};
+
+// Every margin certainly >= 0: its value minus its bound, rounded toward zero, still > 0 (or the
+// margin is exactly zero with no error: a point exactly on the trim line is on the part).
+template <class T>
+inline bool certainly_within(const Margins<Bounded<T>>& ms)
+{
+    for (int i = 0; i < ms.count; ++i) {
+        const Bounded<T>& m = ms.m[i];
+        const bool exact_zero = m.v == T(0) && m.e == T(0);
+        if (!exact_zero && !(m.v > T(0) && lower(m) > T(0))) return false;
+    }
+    return true;
+}
+
 // A certified distance from t to a root of the exact quadratic
 //   a·h² + F'(t)·h + F(t) = 0,   h = root − t,
 // given only bounds on the three exact coefficients; finite only when a real root provably exists.

@@ -14,6 +14,29 @@
 
 namespace rayq::detail {
 
+// The trims of an axial solid (cylinder, cone) as margins >= 0 (see Margins): the side between the
+// end planes, 0 <= (p − p0)·A <= |A|² with A = p1 − p0; a cap within its radius,
+// r_end²·|A|² − |(p − p_end) × A|² >= 0 (the squared distance from the axis, scaled by |A|²).
+template <class N>
+inline Margins<N> axial_trim_margins(const Vec3<N>& p0, const Vec3<N>& p1, N r0, N r1, const Vec3<N>& o, const Vec3<N>& d,
+                                     N t, Part part)
+{
+    const Vec3<N> axis = p1 - p0, p = o + t * d;
+    const N aa = dot(axis, axis);
+    Margins<N> m;
+    if (part == Part::surface) {
+        const N h = dot(p - p0, axis);
+        m.add(h);
+        m.add(aa - h);
+    } else {
+        const bool first = part == Part::cap0;
+        const Vec3<N> radial = cross(p - (first ? p0 : p1), axis);
+        const N r = first ? r0 : r1;
+        m.add(r * r * aa - dot(radial, radial));
+    }
+    return m;
+}
+
 // Every finite end of every span is a crossing of the surface.
 template <class T>
 inline Crossings<T> crossings_of(const Spans<T>& spans, Part part = Part::surface)
