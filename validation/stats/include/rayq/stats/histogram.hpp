@@ -29,6 +29,7 @@ public:
     std::uint64_t infinite() const { return infinite_; }
     std::uint64_t nan() const { return nan_; }
     double max() const { return max_; }  // exact largest finite value added (0 when none)
+    const std::map<int, std::uint64_t>& bins() const { return bins_; }  // index -> count, ascending
 
     // The q-quantile (0 < q <= 1) of the finite values, rounded up to its bin's upper edge and
     // capped at the exact maximum: a conservative figure (never below the true quantile).
