@@ -125,6 +125,17 @@ inline Hit<scalar_t<Prim>> first_hit(Policy policy, const Ray<scalar_t<Prim>>& r
     return h;
 }
 
+// The t of the first crossing inside (tmin, tmax), if any: the cheap core that closest-hit
+// searches over many primitives run before building one hit record (ray and primitive already
+// accepted).
+template <class Policy, class Prim>
+inline std::optional<scalar_t<Prim>> first_t_in_window(Policy policy, const Ray<scalar_t<Prim>>& ray, const Prim& prim)
+{
+    for (const auto& c : crossings(policy, ray, prim))
+        if (in_window(ray, c.t)) return c.t;
+    return std::nullopt;
+}
+
 template <class Prim>
 inline bool accepts(const Ray<scalar_t<Prim>>& ray, const Prim& prim)
 {
@@ -148,10 +159,7 @@ inline std::optional<Hit<scalar_t<Prim>>> intersect(Policy policy, const Ray<sca
 template <class Policy, class Prim, std::enable_if_t<is_policy_v<Policy> && is_primitive_v<Prim>, int> = 0>
 inline bool occluded(Policy policy, const Ray<scalar_t<Prim>>& ray, const Prim& prim)
 {
-    if (!detail::accepts(ray, prim)) return false;
-    for (const auto& c : crossings(policy, ray, prim))
-        if (detail::in_window(ray, c.t)) return true;
-    return false;
+    return detail::accepts(ray, prim) && detail::first_t_in_window(policy, ray, prim).has_value();
 }
 
 // One boundary crossing along the ray: the hit record and whether the ray enters the solid there

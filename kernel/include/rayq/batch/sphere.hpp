@@ -1,0 +1,109 @@
+// rayq — one ray against many spheres stored as structure of arrays (the BVH-leaf pattern).
+//
+// The batch path is a conservative culling filter in SIMD lanes followed by the scalar
+// intersector on the lanes it keeps, so its answers are the scalar path's, bit for bit, for
+// every policy: the filter only has to be sure that a lane it drops would have been a miss in
+// the window under any policy. It drops a sphere when the ray's line passes it by clearly more
+// than every policy's discriminant error, or when the sphere lies clearly outside (tmin, tmax).
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "../detail/lanes.hpp"
+#include "../ray.hpp"
+#include "../sphere.hpp"
+
+namespace rayq::batch {
+
+// Spheres as structure of arrays, in whole lane groups; the last group is padded with zeros
+// (finite, so no lane computes NaN) and live() masks the padding out.
+template <class T>
+struct SphereSoA {
+    static constexpr int width = detail::Lanes<T>::width;
+    std::vector<T> cx, cy, cz, r;
+    std::size_t count = 0;
+
+    void push_back(const Sphere<T>& s)
+    {
+        if (count % width == 0) {  // open a new lane group, filled with padding
+            for (std::vector<T>* v : {&cx, &cy, &cz, &r}) v->resize(v->size() + width, T(0));
+        }
+        cx[count] = s.center.x;
+        cy[count] = s.center.y;
+        cz[count] = s.center.z;
+        r[count] = s.radius;
+        ++count;
+    }
+    std::size_t groups() const { return cx.size() / width; }
+    // Lanes of group g that hold spheres (the last group may be partly padding).
+    std::uint32_t live(std::size_t g) const
+    {
+        const std::size_t n = count - g * width;
+        return n >= static_cast<std::size_t>(width) ? (width == 32 ? ~0u : (1u << width) - 1u) : (1u << n) - 1u;
+    }
+};
+
+// What the filter needs of one ray, computed once per ray.
+template <class T>
+struct SphereFilterRay {
+    Vec3<T> origin, unit_dir;
+    T inv_len;        // 1/|d|: t is measured in units of d
+    T line_slack_abs; // absolute slack on ℓ² − r² for underflow (see below)
+    T t_slack_abs;
+
+    explicit SphereFilterRay(const Ray<T>& ray)
+    {
+        const T len = length(ray.direction);
+        inv_len = T(1) / len;
+        origin = ray.origin;
+        unit_dir = ray.direction * inv_len;
+        // Products that underflow err by at most denorm_min/2 absolutely; in the scalar
+        // policies such errors are divided by a = |d|² (≥ the smallest normal for a usable ray),
+        // so K·min/|d|² (plus K·min for the filter's own underflow) bounds them in units of ℓ².
+        constexpr T min = std::numeric_limits<T>::min();
+        line_slack_abs = T(k_slack) * (min / (len * len) + min);
+        t_slack_abs = std::sqrt(line_slack_abs) * inv_len;
+    }
+    // Every policy's discriminant of a sphere errs by at most γ(n)·(b² + |a·c|) ≤ 2γ(n)·a·(|u|² + r²)
+    // with n ≤ 10 (pbrt-v4 "Managing Rounding Error" §6.8.1 bounds; Ray Tracing Gems ch. 7 for the
+    // forms): K = 256 unit roundoffs covers it with a wide margin, plus the filter's own ≤ 8ε·|u|².
+    static constexpr int k_slack = 256;
+};
+
+// Bit i set: sphere i of lane group g may be hit in (tmin, tmax) by some policy; clear: it is
+// certainly missed by every policy. NaN and overflow keep a lane (the scalar path decides).
+template <class T>
+inline std::uint32_t sphere_candidates(const SphereFilterRay<T>& f, T tmin, T tmax, const SphereSoA<T>& s, std::size_t g)
+{
+    using L = detail::Lanes<T>;
+    using P = typename L::pack;
+    constexpr T eps = std::numeric_limits<T>::epsilon();
+    const T k_eps = T(SphereFilterRay<T>::k_slack) * eps;
+    const T sqrt_k_eps = std::sqrt(k_eps);
+    const std::size_t i = g * L::width;
+    const P r = L::load(&s.r[i]);
+    const P ux = P(f.origin.x) - L::load(&s.cx[i]);
+    const P uy = P(f.origin.y) - L::load(&s.cy[i]);
+    const P uz = P(f.origin.z) - L::load(&s.cz[i]);
+    const P uu = ux * ux + uy * uy + uz * uz;
+    const P ud = ux * P(f.unit_dir.x) + uy * P(f.unit_dir.y) + uz * P(f.unit_dir.z);
+    const P rr = r * r;
+    // ℓ² = |u|² − (u·d̂)²: the squared distance from the center to the line. Computed with
+    // cancellation, its error (≤ 8ε|u|²) is inside the slack; clarity beats precision here.
+    const P ll = uu - ud * ud;
+    const auto line_far = ll > rr + P(k_eps) * (uu + rr) + P(f.line_slack_abs);
+    // The crossings lie in tc ± r/|d|; a policy's t errs by at most √(Kε)·(|tc| + 2r/|d|) (the
+    // square root of the discriminant's error near tangency: Ray Tracing Gems ch. 7).
+    const P tc = -ud * P(f.inv_len);
+    const P rad = L::abs(r) * P(f.inv_len);
+    const P margin = rad + P(sqrt_k_eps) * (L::abs(tc) + rad + rad) + P(f.t_slack_abs);
+    const auto behind = tc + margin < P(tmin);
+    const auto beyond = tc - margin > P(tmax);
+    const auto drop = line_far || behind || beyond;
+    return ~L::bits(drop) & s.live(g);
+}
+
+}  // namespace rayq::batch

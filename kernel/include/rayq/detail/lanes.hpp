@@ -1,0 +1,59 @@
+// rayq — SIMD lanes for the batch paths: std::experimental::native_simd where the standard
+// library has it (libstdc++ ≥ 11; header-only, no flags imposed on users), one lane of plain T
+// elsewhere. Batch code is written once over `Lanes<T>::pack` and runs unchanged on either.
+//
+// Why not a plain structure-of-arrays loop: GCC does not vectorize loops calling std::sqrt (it
+// may set errno) unless users pass -fno-math-errno, which a header-only library cannot impose.
+// Define RAYQ_NO_STD_SIMD to force the one-lane fallback (e.g. for clang 14 with libstdc++ 12
+// under AVX-512, whose <experimental/simd> miscompiled in our measurements: issue 7).
+#pragma once
+
+#include <cstdint>
+
+#if !defined(RAYQ_NO_STD_SIMD) && defined(__has_include)
+#if __has_include(<experimental/simd>)
+#include <experimental/simd>
+#if defined(__cpp_lib_experimental_parallel_simd)
+#define RAYQ_HAS_STD_SIMD 1
+#endif
+#endif
+#endif
+
+namespace rayq::detail {
+
+#if defined(RAYQ_HAS_STD_SIMD)
+
+template <class T>
+struct Lanes {
+    using pack = std::experimental::native_simd<T>;
+    using mask = typename pack::mask_type;
+    static constexpr int width = static_cast<int>(pack::size());
+
+    static pack load(const T* p) { return pack(p, std::experimental::element_aligned); }
+    static pack abs(const pack& v) { return std::experimental::abs(v); }
+    static bool none(const mask& m) { return std::experimental::none_of(m); }
+    static std::uint32_t bits(const mask& m)  // lane i -> bit i
+    {
+        std::uint32_t b = 0;
+        for (int i = 0; i < width; ++i) b |= static_cast<std::uint32_t>(static_cast<bool>(m[i])) << i;
+        return b;
+    }
+};
+
+#else
+
+template <class T>
+struct Lanes {
+    using pack = T;
+    using mask = bool;
+    static constexpr int width = 1;
+
+    static pack load(const T* p) { return *p; }
+    static pack abs(const pack& v) { return v < T(0) ? -v : v; }
+    static bool none(mask m) { return !m; }
+    static std::uint32_t bits(mask m) { return m ? 1u : 0u; }
+};
+
+#endif
+
+}  // namespace rayq::detail

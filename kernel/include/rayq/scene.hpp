@@ -1,0 +1,261 @@
+// rayq — scenes that compile only what they use.
+//
+//     rayq::Scene<rayq::Sphere<float>, rayq::Cylinder<float>> scene;
+//     scene.add(rayq::Sphere<float>{{0, 0, 5}, 1});
+//     if (auto h = rayq::intersect(rayq::fast, ray, scene)) ... h->hit, h->type, h->index
+//     bool blocked = rayq::occluded(rayq::fast, ray, scene);
+//
+// Each listed primitive type is stored in its own arrays (spheres also as structure of arrays
+// for the SIMD filter of batch/sphere.hpp); a type not listed is never instantiated. Closest hit
+// searches with the cheap core only (crossing t, no hit record) and builds one record, for the
+// winner, at the end; nearest() stops before that. Any-hit (occluded) returns at the first hit.
+//
+// The answers are exactly those of the scalar queries run over every primitive in order
+// (types in list order, primitives in insertion order; the first of equal t wins): a test.
+// Brute force over all primitives: for large scenes use a BVH (adapters/embree).
+#pragma once
+
+#include <cstddef>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <tuple>
+#include <type_traits>
+#include <vector>
+
+#include "batch/sphere.hpp"
+#include "query.hpp"
+
+namespace rayq {
+
+namespace detail {
+
+template <class Prim, class... List>
+inline constexpr int index_in = [] {
+    constexpr bool same[] = {std::is_same_v<Prim, List>...};
+    for (int i = 0; i < static_cast<int>(sizeof...(List)); ++i)
+        if (same[i]) return i;
+    return -1;
+}();
+
+template <class Prim>
+struct is_sphere : std::false_type {};
+template <class T>
+struct is_sphere<Sphere<T>> : std::true_type {};
+
+struct NoBatch {
+    template <class Prim>
+    void push_back(const Prim&) {}
+};
+
+// One primitive type's storage and its closest/any loops. Invalid primitives are kept (indices
+// stay the caller's) but never hit, as with the scalar queries.
+template <class Prim>
+struct SceneStore {
+    using T = scalar_t<Prim>;
+    static constexpr bool batched = is_sphere<Prim>::value;
+    std::vector<Prim> items;
+    std::vector<unsigned char> valid;
+    std::conditional_t<batched, batch::SphereSoA<T>, NoBatch> soa;
+
+    void add(const Prim& p)
+    {
+        items.push_back(p);
+        valid.push_back(static_cast<bool>(validate(p)));
+        soa.push_back(p);
+    }
+
+    // Calls visit(i) for every primitive the ray may hit in its window, in index order, until
+    // visit returns true. Spheres: the SIMD filter skips lanes the ray certainly misses; the
+    // window is re-read per lane group, so a nearer hit narrows what the filter keeps.
+    template <class Visit>
+    bool scan(const Ray<T>& ray, Visit visit) const
+    {
+        if constexpr (batched) {
+            const batch::SphereFilterRay<T> f(ray);
+            for (std::size_t g = 0; g < soa.groups(); ++g) {
+                std::uint32_t m = batch::sphere_candidates(f, ray.tmin, ray.tmax, soa, g);
+                for (; m != 0; m &= m - 1) {
+                    const std::size_t i = g * batch::SphereSoA<T>::width + static_cast<std::size_t>(lowest_bit(m));
+                    if (valid[i] && visit(i)) return true;
+                }
+            }
+        } else {
+            for (std::size_t i = 0; i < items.size(); ++i)
+                if (valid[i] && visit(i)) return true;
+        }
+        return false;
+    }
+
+    // Finds a hit nearer than `best` (the nearest so far, over every store), updating `best`
+    // and narrowing the window to it. The window stays one ulp past `best`: the accurate policy
+    // decides the window exactly and may report a root just inside an end as the float next to
+    // it, so ties are settled by comparing t, never by the window's exclusive end.
+    template <class Policy>
+    bool closest(Policy policy, Ray<T>& ray, std::optional<T>& best, std::size_t& index) const
+    {
+        bool found = false;
+        scan(ray, [&](std::size_t i) {
+            const std::optional<T> t = first_t_in_window(policy, ray, items[i]);
+            if (t && (!best || *t < *best)) {
+                best = t;
+                ray.tmax = std::nextafter(*t, std::numeric_limits<T>::infinity());
+                index = i;
+                found = true;
+            }
+            return false;
+        });
+        return found;
+    }
+
+    template <class Policy>
+    bool any(Policy policy, const Ray<T>& ray) const
+    {
+        return scan(ray, [&](std::size_t i) { return first_t_in_window(policy, ray, items[i]).has_value(); });
+    }
+
+    static int lowest_bit(std::uint32_t m)
+    {
+        int i = 0;
+        while (!(m & 1u)) m >>= 1, ++i;
+        return i;
+    }
+};
+
+template <class T, class... Prims>
+inline constexpr bool same_scalar_v = (std::is_same_v<T, scalar_t<Prims>> && ...);
+
+}  // namespace detail
+
+template <class... Prims>
+class Scene {
+    static_assert(sizeof...(Prims) > 0, "rayq::Scene: list at least one primitive type");
+    static_assert((is_primitive_v<Prims> && ...), "rayq::Scene: every listed type must be a rayq primitive");
+
+public:
+    using scalar_type = scalar_t<std::tuple_element_t<0, std::tuple<Prims...>>>;
+    static_assert(detail::same_scalar_v<scalar_type, Prims...>, "rayq::Scene: all primitives share one scalar type");
+
+    // Position of Prim in the list (the `type` of a SceneHit).
+    template <class Prim>
+    static constexpr int type_index = detail::index_in<Prim, Prims...>;
+
+    // Adds a primitive and returns its index within its type. Invalid primitives are kept (so
+    // indices stay predictable) and never hit; rayq::validate(prim) says why.
+    template <class Prim>
+    std::size_t add(const Prim& prim)
+    {
+        static_assert(type_index<Prim> >= 0, "rayq::Scene::add: this primitive type is not in the scene's list");
+        auto& store = std::get<type_index<Prim>>(stores_);
+        store.add(prim);
+        return store.items.size() - 1;
+    }
+
+    template <class Prim>
+    const std::vector<Prim>& primitives() const
+    {
+        static_assert(type_index<Prim> >= 0, "rayq::Scene::primitives: this primitive type is not in the scene's list");
+        return std::get<type_index<Prim>>(stores_).items;
+    }
+
+    std::size_t size() const
+    {
+        return std::apply([](const auto&... s) { return (s.items.size() + ...); }, stores_);
+    }
+
+    const std::tuple<detail::SceneStore<Prims>...>& stores() const { return stores_; }
+
+private:
+    std::tuple<detail::SceneStore<Prims>...> stores_;
+};
+
+// The nearest hit without its record: which primitive, and t.
+template <class T>
+struct SceneRef {
+    T t;
+    int type;           // position of the primitive's type in the scene's list
+    std::size_t index;  // within that type, in insertion order
+};
+
+template <class T>
+struct SceneHit {
+    Hit<T> hit;
+    int type;
+    std::size_t index;
+};
+
+template <class Policy, class... Prims, std::enable_if_t<is_policy_v<Policy>, int> = 0>
+inline std::optional<SceneRef<typename Scene<Prims...>::scalar_type>> nearest(
+    Policy policy, const Ray<typename Scene<Prims...>::scalar_type>& ray, const Scene<Prims...>& scene)
+{
+    using T = typename Scene<Prims...>::scalar_type;
+    if (!usable(ray)) return std::nullopt;
+    Ray<T> window = ray;
+    std::optional<T> best_t;
+    std::optional<SceneRef<T>> best;
+    std::apply(
+        [&](const auto&... store) {
+            int type = 0;
+            const auto one = [&](const auto& s) {
+                std::size_t index = 0;
+                if (s.closest(policy, window, best_t, index)) best = SceneRef<T>{*best_t, type, index};
+                ++type;
+            };
+            (one(store), ...);
+        },
+        scene.stores());
+    return best;
+}
+
+// The full hit record of a nearest() answer (the scalar intersect() of that primitive).
+template <class Policy, class... Prims, std::enable_if_t<is_policy_v<Policy>, int> = 0>
+inline SceneHit<typename Scene<Prims...>::scalar_type> complete(Policy policy,
+                                                                const Ray<typename Scene<Prims...>::scalar_type>& ray,
+                                                                const Scene<Prims...>& scene,
+                                                                const SceneRef<typename Scene<Prims...>::scalar_type>& ref)
+{
+    using T = typename Scene<Prims...>::scalar_type;
+    std::optional<Hit<T>> hit;
+    int type = 0;
+    std::apply(
+        [&](const auto&... store) {
+            const auto one = [&](const auto& s) {
+                if (type++ == ref.type) hit = intersect(policy, ray, s.items.at(ref.index));
+            };
+            (one(store), ...);
+        },
+        scene.stores());
+    return {hit.value(), ref.type, ref.index};  // value(): a ref that is not this scene's nearest hit
+}
+
+template <class Policy, class... Prims, std::enable_if_t<is_policy_v<Policy>, int> = 0>
+inline std::optional<SceneHit<typename Scene<Prims...>::scalar_type>> intersect(
+    Policy policy, const Ray<typename Scene<Prims...>::scalar_type>& ray, const Scene<Prims...>& scene)
+{
+    const auto ref = nearest(policy, ray, scene);
+    if (!ref) return std::nullopt;
+    return complete(policy, ray, scene, *ref);
+}
+
+template <class Policy, class... Prims, std::enable_if_t<is_policy_v<Policy>, int> = 0>
+inline bool occluded(Policy policy, const Ray<typename Scene<Prims...>::scalar_type>& ray, const Scene<Prims...>& scene)
+{
+    if (!usable(ray)) return false;
+    return std::apply([&](const auto&... store) { return (store.any(policy, ray) || ...); }, scene.stores());
+}
+
+template <class... Prims>
+inline std::optional<SceneHit<typename Scene<Prims...>::scalar_type>> intersect(
+    const Ray<typename Scene<Prims...>::scalar_type>& ray, const Scene<Prims...>& scene)
+{
+    return intersect(default_policy{}, ray, scene);
+}
+
+template <class... Prims>
+inline bool occluded(const Ray<typename Scene<Prims...>::scalar_type>& ray, const Scene<Prims...>& scene)
+{
+    return occluded(default_policy{}, ray, scene);
+}
+
+}  // namespace rayq

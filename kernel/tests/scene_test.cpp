@@ -1,0 +1,211 @@
+// Scenes (scene.hpp) and the sphere batch filter (batch/sphere.hpp): the answers equal the scalar
+// queries run over every primitive, bit for bit, for every policy and type — on generic rays and
+// on the rays that stress a culling filter (near tangency far away, where the fast policy's
+// discriminant is noise; tiny and huge directions; windows that end just before a hit).
+#include <bitset>
+#include <cstring>
+#include <random>
+
+#include <rayq/scene.hpp>
+
+#include "test_support.hpp"
+
+namespace rayq::test {
+namespace {
+
+template <class C>
+class SceneTest : public ::testing::Test {};
+TYPED_TEST_SUITE(SceneTest, AllConfigs, ConfigNames);
+
+template <class T>
+struct World {
+    std::mt19937_64 rng;
+    explicit World(std::uint64_t seed) : rng(seed) {}
+
+    double uniform(double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); }
+    double log_uniform(double lo, double hi) { return std::pow(10.0, uniform(std::log10(lo), std::log10(hi))); }
+    Vec3<double> unit_vector()
+    {
+        std::normal_distribution<double> n;
+        Vec3<double> v{n(rng), n(rng), n(rng)};
+        return v / length(v);
+    }
+    Vec3<T> cast(const Vec3<double>& v) { return {T(v.x), T(v.y), T(v.z)}; }
+
+    // Spheres of mixed sizes spread over a box, a few invalid ones among them.
+    Sphere<T> sphere(double extent)
+    {
+        const double pick = uniform(0, 1);
+        Vec3<double> c{uniform(-extent, extent), uniform(-extent, extent), uniform(-extent, extent)};
+        double r = log_uniform(1e-3, 0.2) * extent;
+        if (pick < 0.03) r = -r;                                           // invalid: negative radius
+        if (pick > 0.97) r = std::numeric_limits<double>::quiet_NaN();     // invalid: NaN
+        return {cast(c), T(r)};
+    }
+
+    // A ray chosen to stress the filter: aimed near the outline of one of the spheres (relative
+    // distance to tangency 10^-k on either side), from near or far, with a direction of unusual
+    // length, or a generic random ray; random windows.
+    Ray<T> ray(const std::vector<Sphere<T>>& spheres, double extent)
+    {
+        const int kind = std::uniform_int_distribution<int>(0, 5)(rng);
+        const Sphere<T>& s = spheres[std::uniform_int_distribution<std::size_t>(0, spheres.size() - 1)(rng)];
+        const double r = std::isfinite(double(s.radius)) ? std::abs(double(s.radius)) : 1.0;
+        const Vec3<double> c{double(s.center.x), double(s.center.y), double(s.center.z)};
+        Vec3<double> d = unit_vector(), o;
+        if (kind == 0) {
+            o = Vec3<double>{uniform(-2, 2), uniform(-2, 2), uniform(-2, 2)} * extent;
+        } else {
+            // Offset perpendicular to d by r·(1 ± 10^-k), then back off along d.
+            Vec3<double> side = cross(d, unit_vector());
+            side = side / length(side);
+            const int k = std::uniform_int_distribution<int>(1, std::is_same_v<T, float> ? 7 : 15)(rng);
+            const double delta = (uniform(0, 1) < 0.5 ? -1 : 1) * std::pow(10.0, -k);
+            const double distance = kind == 2 ? log_uniform(1e2, 1e7) * r : uniform(0, 4) * extent;
+            o = c + side * (r * (1 + delta)) - d * distance;
+            if (kind == 3) o = c + unit_vector() * (r * uniform(0, 1));  // from inside
+        }
+        if (kind == 4) d = d * log_uniform(1e-15, 1e15);                 // unusual direction length
+        Ray<T> out{cast(o), cast(d)};
+        if (kind == 5 || uniform(0, 1) < 0.2) {  // a window that may end just before or after a hit
+            const auto h = intersect(stable, out, s);
+            if (h) out.tmax = std::nextafter(h->t, uniform(0, 1) < 0.5 ? T(0) : std::numeric_limits<T>::infinity());
+            if (uniform(0, 1) < 0.3) out.tmin = -out.tmax;
+        }
+        return out;
+    }
+};
+
+// Brute force: the scalar query over every primitive in scene order; strict < keeps the first.
+template <class Policy, class T, class Prim>
+void brute(Policy p, const Ray<T>& ray, const std::vector<Prim>& prims, int type, std::optional<SceneHit<T>>& best)
+{
+    for (std::size_t i = 0; i < prims.size(); ++i)
+        if (const auto h = intersect(p, ray, prims[i]); h && (!best || h->t < best->hit.t)) best = SceneHit<T>{*h, type, i};
+}
+
+template <class T>
+bool same_bits(const T& a, const T& b) { return std::memcmp(&a, &b, sizeof(T)) == 0; }
+
+template <class T>
+void expect_same_hit(const Hit<T>& a, const Hit<T>& b)
+{
+    EXPECT_TRUE(same_bits(a.t, b.t)) << a.t << " vs " << b.t;
+    EXPECT_EQ(a.point, b.point);
+    EXPECT_EQ(a.normal, b.normal);
+    EXPECT_EQ(a.part, b.part);
+    EXPECT_EQ(a.front_face, b.front_face);
+    EXPECT_TRUE(same_bits(a.t_error, b.t_error));
+}
+
+// The filter keeps every sphere that any policy hits in the window.
+TYPED_TEST(SceneTest, SphereFilterNeverDropsAHit)
+{
+    using T = typename TypeParam::T;
+    World<T> w(0x5CE4E001 + sizeof(T));
+    std::size_t kept = 0, hits = 0, lanes = 0;
+    for (int scene = 0; scene < 40; ++scene) {
+        batch::SphereSoA<T> soa;
+        std::vector<Sphere<T>> spheres;
+        for (int i = 0; i < 64; ++i) {
+            spheres.push_back(w.sphere(10.0));
+            soa.push_back(spheres.back());
+        }
+        for (int k = 0; k < 200; ++k) {
+            const Ray<T> ray = w.ray(spheres, 10.0);
+            if (!usable(ray)) continue;
+            const batch::SphereFilterRay<T> f(ray);
+            for (std::size_t g = 0; g < soa.groups(); ++g) {
+                const std::uint32_t m = batch::sphere_candidates(f, ray.tmin, ray.tmax, soa, g);
+                kept += std::bitset<32>(m).count();
+                for (int lane = 0; lane < batch::SphereSoA<T>::width; ++lane) {
+                    const std::size_t i = g * batch::SphereSoA<T>::width + static_cast<std::size_t>(lane);
+                    if (i >= spheres.size()) break;
+                    ++lanes;
+                    const bool hit = occluded(TypeParam::policy, ray, spheres[i]);
+                    hits += hit;
+                    if (hit) {
+                        EXPECT_TRUE(m >> lane & 1u) << "dropped sphere " << i << " hit at t = "
+                                                    << intersect(TypeParam::policy, ray, spheres[i])->t;
+                    }
+                }
+            }
+        }
+    }
+    // It must also cull: rays aimed at one of 64 scattered spheres pass most of the others by.
+    EXPECT_LT(kept, lanes / 2) << "kept " << kept << " of " << lanes << " lanes (" << hits << " hits)";
+}
+
+TYPED_TEST(SceneTest, EqualsTheScalarQueriesOverEveryPrimitive)
+{
+    using T = typename TypeParam::T;
+    const auto p = TypeParam::policy;
+    World<T> w(0x5CE4E002 + sizeof(T));
+    for (int scene_n : {1, 3, 17, 100}) {
+        Scene<Sphere<T>, Cylinder<T>, Triangle<T>> scene;
+        std::vector<Sphere<T>> spheres;
+        std::vector<Cylinder<T>> cylinders;
+        std::vector<Triangle<T>> triangles;
+        for (int i = 0; i < scene_n; ++i) {
+            spheres.push_back(w.sphere(10.0));
+            EXPECT_EQ(scene.add(spheres.back()), spheres.size() - 1);
+            if (i % 3 == 0) {
+                const Vec3<T> a = w.cast(w.unit_vector() * 8.0), b = a + w.cast(w.unit_vector() * w.uniform(0.5, 3));
+                cylinders.push_back({a, b, T(w.log_uniform(0.05, 1)), i % 2 == 0 ? Caps::both : Caps::none});
+                scene.add(cylinders.back());
+                triangles.push_back({w.cast(w.unit_vector() * 9.0), w.cast(w.unit_vector() * 9.0), w.cast(w.unit_vector() * 9.0)});
+                scene.add(triangles.back());
+            }
+        }
+        // A tie: the second copy of a sphere must never replace the first.
+        spheres.push_back(spheres.front());
+        scene.add(spheres.back());
+        EXPECT_EQ(scene.size(), spheres.size() + cylinders.size() + triangles.size());
+        for (int k = 0; k < 1500; ++k) {
+            const Ray<T> ray = w.ray(spheres, 10.0);
+            std::optional<SceneHit<T>> expected;
+            brute(p, ray, spheres, 0, expected);
+            brute(p, ray, cylinders, 1, expected);
+            brute(p, ray, triangles, 2, expected);
+            const auto got = intersect(p, ray, scene);
+            ASSERT_EQ(got.has_value(), expected.has_value()) << "scene of " << scene_n << ", ray " << k;
+            EXPECT_EQ(occluded(p, ray, scene), expected.has_value());
+            if (!got) continue;
+            EXPECT_EQ(got->type, expected->type);
+            EXPECT_EQ(got->index, expected->index);
+            expect_same_hit(got->hit, expected->hit);
+            const auto ref = nearest(p, ray, scene);
+            ASSERT_TRUE(ref);
+            EXPECT_TRUE(same_bits(ref->t, expected->hit.t));
+        }
+    }
+}
+
+TYPED_TEST(SceneTest, BadRaysAndInvalidPrimitivesNeverHit)
+{
+    using T = typename TypeParam::T;
+    constexpr T inf = std::numeric_limits<T>::infinity(), nan = std::numeric_limits<T>::quiet_NaN();
+    Scene<Sphere<T>, Plane<T>> scene;
+    scene.add(Sphere<T>{v3<T>(0, 0, 5), T(-1)});   // invalid: kept, never hit
+    scene.add(Sphere<T>{v3<T>(0, 0, 9), nan});
+    scene.add(Plane<T>{v3<T>(0, 0, 20), v3<T>(0, 0, 0)});
+    const Ray<T> forward = ray(v3<T>(0, 0, 0), v3<T>(0, 0, 1));
+    EXPECT_FALSE(intersect(TypeParam::policy, forward, scene));
+    EXPECT_FALSE(occluded(TypeParam::policy, forward, scene));
+    scene.add(Sphere<T>{v3<T>(0, 0, 5), T(1)});
+    const auto h = intersect(TypeParam::policy, forward, scene);
+    ASSERT_TRUE(h);
+    EXPECT_EQ(h->index, 2u);
+    EXPECT_EQ(h->hit.t, T(4));
+    for (const Vec3<T>& d : {v3<T>(0, 0, 0), Vec3<T>{nan, T(0), T(1)}, Vec3<T>{T(0), inf, T(1)}}) {
+        EXPECT_FALSE(intersect(TypeParam::policy, ray(v3<T>(0, 0, 0), d), scene));
+        EXPECT_FALSE(occluded(TypeParam::policy, ray(v3<T>(0, 0, 0), d), scene));
+    }
+    EXPECT_FALSE(intersect(TypeParam::policy, ray(Vec3<T>{nan, T(0), T(0)}, v3<T>(0, 0, 1)), scene));
+    Scene<Sphere<T>> empty;
+    EXPECT_FALSE(intersect(TypeParam::policy, forward, empty));
+    EXPECT_FALSE(occluded(TypeParam::policy, forward, empty));
+}
+
+}  // namespace
+}  // namespace rayq::test
