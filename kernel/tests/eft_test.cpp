@@ -1,12 +1,47 @@
 // Error-free transformations: checked against long double / exact rational reasoning.
 #include "test_support.hpp"
 
+#include <cstring>
 #include <random>
+
+#include <rayq/detail/ulp.hpp>
 
 namespace rayq::test {
 namespace {
 
 __extension__ typedef __float128 quad;  // GCC/Clang binary128: the exact reference
+
+// next_up/next_down equal std::nextafter toward ±inf on random bit patterns and the specials.
+template <class T, class Bits>
+void check_neighbours()
+{
+    std::mt19937_64 rng(0x0E1F);
+    constexpr T inf = std::numeric_limits<T>::infinity();
+    std::vector<T> xs = {T(0), -T(0), inf, -inf, std::numeric_limits<T>::max(), -std::numeric_limits<T>::max(),
+                         std::numeric_limits<T>::min(), -std::numeric_limits<T>::min(), std::numeric_limits<T>::denorm_min(),
+                         -std::numeric_limits<T>::denorm_min(), T(1), T(-1)};
+    for (int i = 0; i < 100000; ++i) {
+        const Bits b = static_cast<Bits>(rng());
+        T x;
+        std::memcpy(&x, &b, sizeof x);
+        xs.push_back(x);
+    }
+    for (T x : xs) {
+        const T up = detail::next_up(x), down = detail::next_down(x), ref_up = std::nextafter(x, inf), ref_down = std::nextafter(x, -inf);
+        if (std::isnan(x)) {
+            EXPECT_TRUE(std::isnan(up) && std::isnan(down));
+            continue;
+        }
+        EXPECT_EQ(std::memcmp(&up, &ref_up, sizeof x), 0) << x;
+        EXPECT_EQ(std::memcmp(&down, &ref_down, sizeof x), 0) << x;
+    }
+}
+
+TEST(ErrorFreeTransformations, NextUpAndDownEqualNextafter)
+{
+    check_neighbours<float, std::uint32_t>();
+    check_neighbours<double, std::uint64_t>();
+}
 
 TEST(ErrorFreeTransformations, TwoProductIsExact)
 {

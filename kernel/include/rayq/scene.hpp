@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "batch/sphere.hpp"
+#include "detail/ulp.hpp"
 #include "query.hpp"
 
 namespace rayq {
@@ -100,7 +101,7 @@ struct SceneStore {
             const std::optional<T> t = first_t_in_window(policy, ray, items[i]);
             if (t && (!best || *t < *best)) {
                 best = t;
-                ray.tmax = std::nextafter(*t, std::numeric_limits<T>::infinity());
+                ray.tmax = next_up(*t);
                 index = i;
                 found = true;
             }

@@ -65,12 +65,14 @@ struct SphereFilterRay {
         // so K·min/|d|² (plus K·min for the filter's own underflow) bounds them in units of ℓ².
         constexpr T min = std::numeric_limits<T>::min();
         line_slack_abs = T(k_slack) * (min / (len * len) + min);
-        t_slack_abs = std::sqrt(line_slack_abs) * inv_len;
+        // ≥ √line_slack_abs / |d| (√(a + b) ≤ √a + √b), without a second square root per ray.
+        t_slack_abs = sqrt_k_min * (inv_len + T(1)) * inv_len;
     }
     // Every policy's discriminant of a sphere errs by at most γ(n)·(b² + |a·c|) ≤ 2γ(n)·a·(|u|² + r²)
     // with n ≤ 10 (pbrt-v4 "Managing Rounding Error" §6.8.1 bounds; Ray Tracing Gems ch. 7 for the
     // forms): K = 256 unit roundoffs covers it with a wide margin, plus the filter's own ≤ 8ε·|u|².
     static constexpr int k_slack = 256;
+    static inline const T sqrt_k_min = std::sqrt(T(k_slack) * std::numeric_limits<T>::min()) * T(1.001);
 };
 
 // Bit i set: sphere i of lane group g may be hit in (tmin, tmax) by some policy; clear: it is

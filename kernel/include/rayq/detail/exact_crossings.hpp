@@ -9,6 +9,7 @@
 #include "../ray.hpp"
 #include "exact.hpp"
 #include "spans.hpp"
+#include "ulp.hpp"
 
 namespace rayq::detail {
 
@@ -120,8 +121,8 @@ public:
         if (e.kind == EndKind::pos_inf) return x == inf ? 0 : 1;
         if (!std::isfinite(x)) return x > T(0) ? -1 : 1;
         const T r = rounded(e);
-        if (std::nextafter(r, -std::numeric_limits<T>::infinity()) >= x) return 1;
-        if (std::nextafter(r, std::numeric_limits<T>::infinity()) <= x) return -1;
+        if (next_down(r) >= x) return 1;
+        if (next_up(r) <= x) return -1;
         const FloatLine<T> at{-x, T(1)};
         return -quadratic(e).compare(e.which, at);
     }
@@ -132,8 +133,8 @@ public:
     T value(End e) const
     {
         T t = rounded(e);
-        if (!(t > ray_.tmin)) t = std::nextafter(ray_.tmin, std::numeric_limits<T>::infinity());
-        if (!(t < ray_.tmax)) t = std::nextafter(ray_.tmax, -std::numeric_limits<T>::infinity());
+        if (!(t > ray_.tmin)) t = next_up(ray_.tmin);
+        if (!(t < ray_.tmax)) t = next_down(ray_.tmax);
         return t;
     }
 
@@ -150,9 +151,8 @@ private:
     // sign(x − y) when x and y are at least two ulps apart, else 0.
     static int separated(T x, T y)
     {
-        constexpr T inf = std::numeric_limits<T>::infinity();
-        if (std::nextafter(std::nextafter(x, inf), inf) <= y) return -1;
-        if (std::nextafter(std::nextafter(y, inf), inf) <= x) return 1;
+        if (next_up(next_up(x)) <= y) return -1;
+        if (next_up(next_up(y)) <= x) return 1;
         return 0;
     }
 
@@ -232,22 +232,21 @@ inline Crossings<scalar_t<Prim>> exact_flat_crossing(const Ray<scalar_t<Prim>>& 
     T t = plane.round(0, plane.guess(0));
     // The exact root lies strictly between t's neighbours: decide the window from them when they
     // suffice, exactly otherwise.
-    constexpr T inf = std::numeric_limits<T>::infinity();
     const auto after = [&](T x) {
         if (!std::isfinite(x)) return x < T(0);
-        if (std::nextafter(t, -inf) >= x) return true;
-        if (std::nextafter(t, inf) <= x) return false;
+        if (next_down(t) >= x) return true;
+        if (next_up(t) <= x) return false;
         return plane.compare(0, FloatLine<T>{-x, T(1)}) < 0;
     };
     const auto before = [&](T x) {
         if (!std::isfinite(x)) return x > T(0);
-        if (std::nextafter(t, inf) <= x) return true;
-        if (std::nextafter(t, -inf) >= x) return false;
+        if (next_up(t) <= x) return true;
+        if (next_down(t) >= x) return false;
         return plane.compare(0, FloatLine<T>{-x, T(1)}) > 0;
     };
     if (!after(ray.tmin) || !before(ray.tmax) || !inside(plane)) return out;
-    if (!(t > ray.tmin)) t = std::nextafter(ray.tmin, std::numeric_limits<T>::infinity());
-    if (!(t < ray.tmax)) t = std::nextafter(ray.tmax, -std::numeric_limits<T>::infinity());
+    if (!(t > ray.tmin)) t = next_up(ray.tmin);
+    if (!(t < ray.tmax)) t = next_down(ray.tmax);
     out.add(t, Part::surface, plane.sign_b() < 0);  // F = (o + t·d − p)·n decreasing: entering
     return out;
 }

@@ -1,0 +1,32 @@
+// rayq — the neighbouring floats, inline. std::nextafter is an out-of-line libm call (several ns),
+// and the accurate policy and scene searches step by one ulp on their hot paths.
+#pragma once
+
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <type_traits>
+
+namespace rayq::detail {
+
+// The next float above x (IEEE 754 nextUp): +inf and NaN stay, −inf becomes −max, ±0 the
+// smallest subnormal. Equal to std::nextafter(x, +inf).
+template <class T>
+inline T next_up(T x)
+{
+    static_assert(std::numeric_limits<T>::is_iec559 && (sizeof(T) == 4 || sizeof(T) == 8));
+    using Bits = std::conditional_t<sizeof(T) == 4, std::uint32_t, std::uint64_t>;
+    if (x != x || x == std::numeric_limits<T>::infinity()) return x;
+    if (x == T(0)) return std::numeric_limits<T>::denorm_min();
+    Bits b;
+    std::memcpy(&b, &x, sizeof b);
+    b = x > T(0) ? b + 1 : b - 1;  // sign-magnitude: a step away from zero for positives, toward it for negatives
+    std::memcpy(&x, &b, sizeof b);
+    return x;
+}
+
+// The next float below x: std::nextafter(x, −inf).
+template <class T>
+inline T next_down(T x) { return -next_up(-x); }
+
+}  // namespace rayq::detail

@@ -1,0 +1,165 @@
+// rayq-bench-scene: one ray against N primitives (N = 1, 16, 1,024), the BVH-leaf pattern.
+// For spheres (float and double, every policy) and capped cylinders it compares
+//   loop     the scalar intersect()/occluded() over an array, keeping the nearest hit;
+//   scene    rayq::Scene<...> (compile-time type list, SIMD sphere filter, one hit record);
+//   variant  a runtime-dispatched scene: std::vector<std::variant<Sphere, Cylinder>> + std::visit.
+// Names: <query>/<prim>/<type>/<policy>/<variant>/<N>. items_per_second is ray–primitive tests
+// per second (rays × N); "hits" the fraction of rays that hit something. Rays start outside the
+// scene's box and aim at random points inside it; primitives are random, ~1% of the box each.
+#include <benchmark/benchmark.h>
+#include <rayq/rayq.hpp>
+#include <rayq/scene.hpp>
+
+#include <cmath>
+#include <random>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace {
+
+constexpr std::size_t kRays = 1024;
+
+template <class T> constexpr const char* type_name() { return sizeof(T) == 4 ? "float" : "double"; }
+constexpr const char* policy_name(rayq::fast_policy) { return "fast"; }
+constexpr const char* policy_name(rayq::stable_policy) { return "stable"; }
+constexpr const char* policy_name(rayq::accurate_policy) { return "accurate"; }
+
+template <class T>
+struct Setup {
+    std::vector<rayq::Sphere<T>> spheres;
+    std::vector<rayq::Cylinder<T>> cylinders;
+    std::vector<rayq::Ray<T>> rays;
+};
+
+// N primitives in the cube [-1, 1]³ with radius ~ N^(-1/3)/4 (so rays meet a few of them at every
+// N), rays from a sphere of radius 4 at points of the cube.
+template <class T>
+Setup<T> setup(std::size_t n, bool cylinders)
+{
+    std::mt19937_64 rng(0x5CE4E000 + n);
+    std::uniform_real_distribution<double> u(-1, 1);
+    std::normal_distribution<double> g;
+    Setup<T> s;
+    const double r = 0.25 / std::cbrt(double(n));
+    for (std::size_t i = 0; i < n; ++i) {
+        const rayq::Vec3<T> c{T(u(rng)), T(u(rng)), T(u(rng))};
+        if (cylinders) {
+            const rayq::Vec3<T> axis{T(g(rng)), T(g(rng)), T(g(rng))};
+            s.cylinders.push_back(rayq::Cylinder<T>::from_center(c, axis, T(r), T(r), rayq::Caps::both));
+        } else {
+            s.spheres.push_back({c, T(r * (0.5 + 0.5 * (u(rng) + 1)))});
+        }
+    }
+    for (std::size_t i = 0; i < kRays; ++i) {
+        rayq::Vec3<double> o{g(rng), g(rng), g(rng)};
+        o = o * (4.0 / rayq::length(o));
+        const rayq::Vec3<double> target{u(rng), u(rng), u(rng)}, d = rayq::normalize(target - o);
+        s.rays.push_back({{T(o.x), T(o.y), T(o.z)}, {T(d.x), T(d.y), T(d.z)}});
+    }
+    return s;
+}
+
+template <class Policy, class T, class Prim>
+bool loop_closest(Policy p, const rayq::Ray<T>& ray, const std::vector<Prim>& prims, std::size_t& index)
+{
+    std::optional<rayq::Hit<T>> best;
+    for (std::size_t i = 0; i < prims.size(); ++i)
+        if (auto h = rayq::intersect(p, ray, prims[i]); h && (!best || h->t < best->t)) best = h, index = i;
+    return best.has_value();
+}
+
+template <class Policy, class T, class Prim>
+bool loop_any(Policy p, const rayq::Ray<T>& ray, const std::vector<Prim>& prims)
+{
+    for (const Prim& prim : prims)
+        if (rayq::occluded(p, ray, prim)) return true;
+    return false;
+}
+
+enum class Variant { loop, scene, variant };
+constexpr const char* variant_name(Variant v) { return v == Variant::loop ? "loop" : v == Variant::scene ? "scene" : "variant"; }
+
+template <class T, class Policy, class Prim>
+void run(benchmark::State& state, Policy p, Variant v, bool closest, std::size_t n)
+{
+    constexpr bool cyl = std::is_same_v<Prim, rayq::Cylinder<T>>;
+    const Setup<T> s = setup<T>(n, cyl);
+    const std::vector<Prim>& prims = [&]() -> const std::vector<Prim>& {
+        if constexpr (cyl) return s.cylinders;
+        else return s.spheres;
+    }();
+    rayq::Scene<rayq::Sphere<T>, rayq::Cylinder<T>> scene;
+    std::vector<std::variant<rayq::Sphere<T>, rayq::Cylinder<T>>> dynamic;
+    for (const Prim& prim : prims) scene.add(prim), dynamic.emplace_back(prim);
+    std::size_t hits = 0;
+    for (auto _ : state) {
+        hits = 0;
+        for (const rayq::Ray<T>& ray : s.rays) {
+            bool hit = false;
+            std::size_t index = 0;
+            if (v == Variant::loop) {
+                hit = closest ? loop_closest(p, ray, prims, index) : loop_any(p, ray, prims);
+            } else if (v == Variant::scene) {
+                if (closest) {
+                    const auto h = rayq::intersect(p, ray, scene);
+                    hit = h.has_value();
+                    if (hit) benchmark::DoNotOptimize(h->hit.t);
+                } else {
+                    hit = rayq::occluded(p, ray, scene);
+                }
+            } else {
+                std::optional<rayq::Hit<T>> best;
+                for (const auto& prim : dynamic) {
+                    if (closest) {
+                        const auto h = std::visit([&](const auto& q) { return rayq::intersect(p, ray, q); }, prim);
+                        if (h && (!best || h->t < best->t)) best = h;
+                    } else if (std::visit([&](const auto& q) { return rayq::occluded(p, ray, q); }, prim)) {
+                        hit = true;
+                        break;
+                    }
+                }
+                if (closest) hit = best.has_value();
+            }
+            hits += hit;
+            benchmark::DoNotOptimize(index);
+        }
+    }
+    state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * s.rays.size() * n));
+    state.counters["hits"] = double(hits) / double(s.rays.size());
+    state.counters["rays_per_second"] = benchmark::Counter(double(s.rays.size()), benchmark::Counter::kIsIterationInvariantRate);
+}
+
+template <class T, class Policy, class Prim>
+void add(const char* prim_name, Policy p)
+{
+    for (Variant v : {Variant::loop, Variant::scene, Variant::variant})
+        for (bool closest : {true, false})
+            for (std::size_t n : {std::size_t(1), std::size_t(16), std::size_t(1024)}) {
+                const std::string name = std::string(closest ? "closest" : "any") + "/" + prim_name + "/" + type_name<T>() + "/" +
+                                         policy_name(p) + "/" + variant_name(v) + "/" + std::to_string(n);
+                benchmark::RegisterBenchmark(name.c_str(), [=](benchmark::State& st) { run<T, Policy, Prim>(st, p, v, closest, n); });
+            }
+}
+
+template <class T>
+void add_all()
+{
+    add<T, rayq::fast_policy, rayq::Sphere<T>>("sphere", rayq::fast);
+    add<T, rayq::stable_policy, rayq::Sphere<T>>("sphere", rayq::stable);
+    add<T, rayq::accurate_policy, rayq::Sphere<T>>("sphere", rayq::accurate);
+    add<T, rayq::stable_policy, rayq::Cylinder<T>>("cylinder", rayq::stable);
+}
+
+}  // namespace
+
+int main(int argc, char** argv)
+{
+    add_all<float>();
+    add_all<double>();
+    benchmark::Initialize(&argc, argv);
+    if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 2;
+    benchmark::RunSpecifiedBenchmarks();
+    benchmark::Shutdown();
+    return 0;
+}
