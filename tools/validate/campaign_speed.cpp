@@ -20,15 +20,20 @@ namespace {
 struct Program {
     const char* item;
     const char* binary;  // in the tools build directory (RAYQ_TOOLS_BINARY_DIR), relative
+    const char* quick_filter;  // --benchmark_filter under --quick ("" = everything)
+    const char* filter;        // otherwise
 };
 const Program programs[] = {
-    {"policies", "rayq-bench"},
+    {"policies", "rayq-bench", "", ""},
+    // One ray against 16 and 1,024 primitives: scalar loop, compile-time scene, runtime variant.
+    {"scene", "rayq-bench-scene", "sphere/float/fast/(loop|scene)/16$", "/(16|1024)$"},
 };
 
-std::vector<Item> plan(const Settings&)
+std::vector<Item> plan(const Settings& s)
 {
     std::vector<Item> items;
-    for (const Program& p : programs) items.push_back({p.item, {{"binary", p.binary}}});
+    for (const Program& p : programs)
+        items.push_back({p.item, {{"binary", p.binary}, {"filter", s.preset == "quick" ? p.quick_filter : p.filter}}});
     return items;
 }
 
@@ -38,10 +43,10 @@ json run(const Settings& s, const Item& item, std::string& csv)
     const std::filesystem::path out = temporary_path("bench.json");
     char min_time[64];
     std::snprintf(min_time, sizeof min_time, "--benchmark_min_time=%g", s.bench_min_time);
-    const int status = run_program({binary, min_time, "--benchmark_repetitions=5", "--benchmark_report_aggregates_only=true",
-                                    "--benchmark_format=json", "--benchmark_out_format=json",
-                                    "--benchmark_out=" + out.string()},
-                                   /*quiet=*/true);
+    std::vector<std::string> args = {binary, min_time, "--benchmark_repetitions=5", "--benchmark_report_aggregates_only=true",
+                                     "--benchmark_format=json", "--benchmark_out_format=json", "--benchmark_out=" + out.string()};
+    if (const std::string filter = item.spec.value("filter", ""); !filter.empty()) args.push_back("--benchmark_filter=" + filter);
+    const int status = run_program(args, /*quiet=*/true);
     if (status != 0) throw std::runtime_error(binary + " exited with status " + std::to_string(status));
     std::ifstream in(out);
     const json j = json::parse(in);
@@ -90,12 +95,34 @@ json reduce(const Settings&, const std::vector<json>& results)
             metrics["speed." + std::string(policy) + "_over_fast." + key] = ratio;
         }
     }
+    // rayq-bench-scene: <query>/<prim>/<type>/<policy>/<loop|scene|variant>/<N>; the scene's and the
+    // variant's speed-up over the scalar loop, same run.
+    json scene_table = json::array();
+    for (const auto& [name, t] : ns) {
+        const std::string tail = "/loop/";
+        const auto at = name.find(tail);
+        if (at == std::string::npos || t <= 0) continue;
+        const std::string stem = name.substr(0, at), n = name.substr(at + tail.size());
+        json row = {stem, n};
+        for (const char* v : {"scene", "variant"}) {
+            const auto other = ns.find(stem + "/" + v + "/" + n);
+            const double speedup = other == ns.end() || other->second <= 0 ? 0.0 : t / other->second;
+            row.push_back(speedup);
+            std::string key = stem + "." + n;
+            for (char& ch : key) if (ch == '/') ch = '.';
+            if (speedup > 0) metrics["speed." + std::string(v) + "_over_loop." + key] = speedup;
+        }
+        scene_table.push_back(row);
+    }
     json bench_table = json::array(), ratio_table = json::array();
     for (const json& r : rows) bench_table.push_back({r["name"], r["ns"], r["time_unit"], r["counters"].dump()});
     for (const json& r : ratios) ratio_table.push_back({r["variant"], r["policy"], r["over_fast"]});
     const json tables = json::array(
         {{{"title", "Cost relative to fast (same run)"}, {"columns", {"primitive/type", "policy", "time / fast"}},
           {"rows", ratio_table}},
+         {{"title", "One ray against N primitives: speed-up over the scalar loop (same run)"},
+          {"columns", {"query/primitive/type/policy", "N", "Scene<...>", "std::variant"}},
+          {"rows", scene_table}},
          {{"title", "Benchmarks (median of 5 repetitions)"}, {"columns", {"benchmark", "median time", "unit", "counters"}},
           {"rows", bench_table}}});
     return {{"metrics", metrics}, {"rows", rows}, {"ratios", ratios}, {"tables", tables}};
