@@ -23,37 +23,37 @@ template <class T>
 inline constexpr T unit_roundoff = std::numeric_limits<T>::epsilon() / 2;
 
 template <class T>
-inline T grow(T bound)
+RAYQ_INLINE T grow(T bound)
 {
     return bound * (T(1) + T(8) * unit_roundoff<T>) + std::numeric_limits<T>::denorm_min();
 }
 
-template <class T> inline Bounded<T> operator+(Bounded<T> a, Bounded<T> b)
+template <class T> RAYQ_INLINE Bounded<T> operator+(Bounded<T> a, Bounded<T> b)
 {
     const T v = a.v + b.v;
     return {v, grow(a.e + b.e + unit_roundoff<T> * std::abs(v))};
 }
-template <class T> inline Bounded<T> operator-(Bounded<T> a, Bounded<T> b)
+template <class T> RAYQ_INLINE Bounded<T> operator-(Bounded<T> a, Bounded<T> b)
 {
     const T v = a.v - b.v;
     return {v, grow(a.e + b.e + unit_roundoff<T> * std::abs(v))};
 }
-template <class T> inline Bounded<T> operator-(Bounded<T> a) { return {-a.v, a.e}; }
-template <class T> inline Bounded<T> operator*(Bounded<T> a, Bounded<T> b)
+template <class T> RAYQ_INLINE Bounded<T> operator-(Bounded<T> a) { return {-a.v, a.e}; }
+template <class T> RAYQ_INLINE Bounded<T> operator*(Bounded<T> a, Bounded<T> b)
 {
     const T v = a.v * b.v;
     return {v, grow(std::abs(a.v) * b.e + std::abs(b.v) * a.e + a.e * b.e + unit_roundoff<T> * std::abs(v))};
 }
-template <class T> inline Bounded<T>& operator+=(Bounded<T>& a, Bounded<T> b) { return a = a + b; }
+template <class T> RAYQ_INLINE Bounded<T>& operator+=(Bounded<T>& a, Bounded<T> b) { return a = a + b; }
 
 // Bounds of |x| over the values x may take.
-template <class T> inline T upper(Bounded<T> a) { return grow(std::abs(a.v) + a.e); }
+template <class T> RAYQ_INLINE T upper(Bounded<T> a) { return grow(std::abs(a.v) + a.e); }
 // (|v| − e) rounded toward zero: one rounding of relative size <= u, removed by (1 − 2u).
-template <class T> inline T lower(Bounded<T> a) { return (std::abs(a.v) - grow(a.e)) * (T(1) - T(2) * unit_roundoff<T>); }
+template <class T> RAYQ_INLINE T lower(Bounded<T> a) { return (std::abs(a.v) - grow(a.e)) * (T(1) - T(2) * unit_roundoff<T>); }
 
 // An input vector as numbers of type N (Bounded<T>: exact, error 0; Expansion<T>: one component).
-template <class N, class T> inline Vec3<N> lift(const Vec3<T>& v) { return {N{v.x}, N{v.y}, N{v.z}}; }
-template <class T> inline Vec3<Bounded<T>> exact(const Vec3<T>& v) { return lift<Bounded<T>>(v); }
+template <class N, class T> RAYQ_INLINE Vec3<N> lift(const Vec3<T>& v) { return {N{v.x}, N{v.y}, N{v.z}}; }
+template <class T> RAYQ_INLINE Vec3<Bounded<T>> exact(const Vec3<T>& v) { return lift<Bounded<T>>(v); }
 
 // F(t), F'(t) and the leading coefficient a of a primitive's implicit function along the ray, in
 // any number type N: with Bounded<T> each carries its bound (what certify_root needs); with

@@ -26,31 +26,31 @@ struct DoubleWord {
 };
 
 template <class T>
-inline DoubleWord<T> renormalize(T hi, T lo, T e)
+RAYQ_INLINE DoubleWord<T> renormalize(T hi, T lo, T e)
 {
     const Pair<T> s = two_sum(hi, lo);
     return {s.hi, s.lo, e};
 }
 
 template <class T>
-inline T u2() { return unit_roundoff<T> * unit_roundoff<T>; }
+RAYQ_INLINE T u2() { return unit_roundoff<T> * unit_roundoff<T>; }
 
-template <class T> inline DoubleWord<T> operator+(const DoubleWord<T>& a, const DoubleWord<T>& b)
+template <class T> RAYQ_INLINE DoubleWord<T> operator+(const DoubleWord<T>& a, const DoubleWord<T>& b)
 {
     const Pair<T> s = two_sum(a.hi, b.hi);
     const T lo = s.lo + (a.lo + b.lo);
     return renormalize(s.hi, lo, grow(a.e + b.e + T(4) * u2<T>() * (a.magnitude() + b.magnitude())));
 }
-template <class T> inline DoubleWord<T> operator-(const DoubleWord<T>& a) { return {-a.hi, -a.lo, a.e}; }
-template <class T> inline DoubleWord<T> operator-(const DoubleWord<T>& a, const DoubleWord<T>& b) { return a + (-b); }
-template <class T> inline DoubleWord<T> operator*(const DoubleWord<T>& a, const DoubleWord<T>& b)
+template <class T> RAYQ_INLINE DoubleWord<T> operator-(const DoubleWord<T>& a) { return {-a.hi, -a.lo, a.e}; }
+template <class T> RAYQ_INLINE DoubleWord<T> operator-(const DoubleWord<T>& a, const DoubleWord<T>& b) { return a + (-b); }
+template <class T> RAYQ_INLINE DoubleWord<T> operator*(const DoubleWord<T>& a, const DoubleWord<T>& b)
 {
     const Pair<T> p = two_product(a.hi, b.hi);
     const T lo = p.lo + (a.hi * b.lo + a.lo * b.hi);
     const T ma = a.magnitude(), mb = b.magnitude();
     return renormalize(p.hi, lo, grow(ma * b.e + mb * a.e + a.e * b.e + T(8) * u2<T>() * ma * mb));
 }
-template <class T> inline DoubleWord<T>& operator+=(DoubleWord<T>& a, const DoubleWord<T>& b) { return a = a + b; }
+template <class T> RAYQ_INLINE DoubleWord<T>& operator+=(DoubleWord<T>& a, const DoubleWord<T>& b) { return a = a + b; }
 
 // Certain sign of the exact value, or 0 when the bound straddles zero.
 template <class T>

@@ -18,7 +18,7 @@ struct Pair {
 };
 
 template <class T>
-inline Pair<T> two_sum(T a, T b)
+RAYQ_INLINE Pair<T> two_sum(T a, T b)
 {
     const T s = a + b;
     const T bb = s - a;
@@ -30,7 +30,7 @@ inline Pair<T> two_sum(T a, T b)
 // fused operation; without one (the x86-64 baseline), std::fma is a slow library call, so we use
 // Dekker's product with Veltkamp splitting instead.
 template <class T>
-inline Pair<T> two_product(T a, T b)
+RAYQ_INLINE Pair<T> two_product(T a, T b)
 {
     const T p = a * b;
 #if defined(__FMA__) || defined(__FMA4__) || defined(__aarch64__) || defined(__ARM_FEATURE_FMA)

@@ -11,11 +11,13 @@
 #include <algorithm>
 #include <limits>
 #include <optional>
+#include <type_traits>
 #include <utility>
 
 #include "bounded.hpp"
 #include "double_word.hpp"
 #include "expansion.hpp"
+#include "ulp.hpp"
 
 namespace rayq {
 
@@ -74,18 +76,18 @@ inline int quadratic_sign_at(const Coef& coef, const Line& x)
 template <class T, class Coef>
 class ExactQuadratic {
 public:
-    explicit ExactQuadratic(const Coef& coef) : coef_(coef)
+    explicit ExactQuadratic(const Coef& coef) : coef_(coef), bounded0_(coef(Bounded<T>{T(0)}))
     {
-        sign_a_ = adaptive_sign<T>([&](auto zero) { return coef_(zero).a; });
+        sign_a_ = adaptive_sign<T>([&](auto zero) { return at_zero(zero).a; });
         if (sign_a_ != 0) {
             sign_disc_ = adaptive_sign<T>([&](auto zero) {
-                const auto r = coef_(zero);
+                const auto r = at_zero(zero);
                 return r.df * r.df - decltype(zero){T(4)} * r.a * r.f;
             });
             sign_b_ = 0;
         } else {
-            sign_b_ = adaptive_sign<T>([&](auto zero) { return coef_(zero).df; });
-            sign_c_ = sign_b_ == 0 ? adaptive_sign<T>([&](auto zero) { return coef_(zero).f; }) : 0;
+            sign_b_ = adaptive_sign<T>([&](auto zero) { return at_zero(zero).df; });
+            sign_c_ = sign_b_ == 0 ? adaptive_sign<T>([&](auto zero) { return at_zero(zero).f; }) : 0;
         }
     }
 
@@ -96,7 +98,10 @@ public:
 
     // sign of the quadratic at x = −g/dg.
     template <class Line>
-    int sign_at(const Line& x) const { return quadratic_sign_at<T>(coef_, x); }
+    int sign_at(const Line& x) const
+    {
+        return quadratic_sign_at<T>([this](auto zero) { return at_zero(zero); }, x);
+    }
 
     // sign(x − r) for r the smaller (which = 0) or larger (which = 1) real root, x = −g/dg.
     // Requires real roots (sign_disc >= 0) or, when a = 0, b ≠ 0 (then which is ignored).
@@ -105,7 +110,7 @@ public:
     {
         if (sign_a_ == 0) {  // root −c/b: sign(−g/dg + c/b) = sign(c·dg − g·b)·sign(b)·sign(dg)
             const int s = adaptive_sign<T>([&](auto zero) {
-                const auto r = coef_(zero);
+                const auto r = at_zero(zero);
                 const auto l = x(zero);
                 return r.f * l.df - l.f * r.df;
             });
@@ -116,7 +121,7 @@ public:
         if (inside < 0) return which == 0 ? 1 : -1;
         // Side of the vertex −b/2a: sign(x − vertex) = sign(b·dg − 2a·g)·sign(a)·sign(dg).
         const int side = sign_a_ * line_direction(x) * adaptive_sign<T>([&](auto zero) {
-                             const auto r = coef_(zero);
+                             const auto r = at_zero(zero);
                              const auto l = x(zero);
                              return r.df * l.df - decltype(zero){T(2)} * r.a * l.f;
                          });
@@ -126,11 +131,16 @@ public:
         return which == 0 ? 1 : 0;
     }
 
-    // A float estimate of the root (from the filter's coefficient values, stable q-form).
+    // A float estimate of the root from the coefficients in precision N (stable q-form).
+    template <class N = DoubleWord<T>>
     T guess(int which) const
     {
-        const Residual<DoubleWord<T>> r = coef_(DoubleWord<T>{T(0)});
-        const T a = r.a.hi + r.a.lo, b = r.df.hi + r.df.lo, c = r.f.hi + r.f.lo;
+        const Residual<N> r = at_zero(N{T(0)});
+        const auto value = [](const auto& x) {
+            if constexpr (std::is_same_v<N, DoubleWord<T>>) return x.hi + x.lo;
+            else return x.v;
+        };
+        const T a = value(r.a), b = value(r.df), c = value(r.f);
         if (sign_a_ == 0) return -c / b;
         const T disc = std::max(b * b - T(4) * a * c, T(0));
         const T q = T(-0.5) * (b + std::copysign(std::sqrt(disc), b));
@@ -138,15 +148,16 @@ public:
         if (t1 < t0) std::swap(t0, t1);
         return which == 0 ? t0 : t1;
     }
-
     // The root rounded to nearest (ties to even) in T: a certified Newton step in double-word
-    // arithmetic from `guess` when it can decide, else an exact search.
-    T round(int which, T guess) const
+    // arithmetic from a working-precision guess (enough for most rays), else from a double-word
+    // guess (cancellation in the coefficients: far away, near tangency), else an exact search.
+    T round(int which) const
     {
-        if (const auto quick = newton_round(which, guess)) return *quick;
-        return search_round(which, guess);
+        if (const auto quick = newton_round(which, guess<Bounded<T>>(which))) return *quick;
+        const T careful = guess<DoubleWord<T>>(which);
+        if (const auto quick = newton_round(which, careful)) return *quick;
+        return search_round(which, careful);
     }
-
     // One Newton step t + δ, δ = −F(t)/F'(t), with F, F' and a evaluated in double-word arithmetic
     // at t. With x = 4·|a|·|F|/F'² <= 1/2 the nearest root lies within |δ|·x/2 of t + δ (the
     // quadratic's root 2F/(F' ± √(F'² − 4aF)) against its linearization), plus the bounds'
@@ -175,8 +186,8 @@ public:
         const Pair<T> gap = two_sum(t, -rounded);
         const T offset = gap.hi + (gap.lo + delta);
         const T slack = grow(spread + T(2) * u * (std::abs(gap.lo) + std::abs(delta) + std::abs(offset)));
-        const T up = (std::nextafter(rounded, std::numeric_limits<T>::infinity()) - rounded) / T(2);
-        const T down = (rounded - std::nextafter(rounded, -std::numeric_limits<T>::infinity())) / T(2);
+        const T up = (next_up(rounded) - rounded) / T(2);
+        const T down = (rounded - next_down(rounded)) / T(2);
         if (offset + slack < up && offset - slack > -down) return rounded;
         return std::nullopt;
     }
@@ -221,6 +232,21 @@ public:
     }
 
 private:
+    // The coefficients at t = 0, computed once per quadratic in the two filter precisions (every
+    // sign and comparison starts from them); exact expansions are recomputed when needed.
+    template <class N>
+    Residual<N> at_zero(N zero) const
+    {
+        if constexpr (std::is_same_v<N, Bounded<T>>) {
+            return bounded0_;
+        } else if constexpr (std::is_same_v<N, DoubleWord<T>>) {
+            if (!double_word0_) double_word0_ = coef_(zero);
+            return *double_word0_;
+        } else {
+            return coef_(zero);
+        }
+    }
+
     template <class Line>
     static int line_direction(const Line& x)
     {
@@ -253,6 +279,8 @@ private:
     }
 
     Coef coef_;
+    Residual<Bounded<T>> bounded0_;
+    mutable std::optional<Residual<DoubleWord<T>>> double_word0_;
     int sign_a_ = 0, sign_disc_ = 0, sign_b_ = 0, sign_c_ = 0;
 };
 

@@ -144,7 +144,7 @@ private:
         const int slot = e.kind == EndKind::root ? e.which : (e.kind == EndKind::cap0 ? 2 : 3);
         if (!cache_[slot]) {
             const Quadratic& q = quadratic(e);
-            cache_[slot] = q.round(e.which, q.guess(e.which));
+            cache_[slot] = q.round(e.which);
         }
         return *cache_[slot];
     }
@@ -229,7 +229,7 @@ inline Crossings<scalar_t<Prim>> exact_flat_crossing(const Ray<scalar_t<Prim>>& 
     const ExactQuadratic<T, Coef> plane(Coef{&prim, &ray, Part::surface});
     Crossings<T> out;
     if (plane.sign_b() == 0) return out;  // parallel to the plane, or in it
-    T t = plane.round(0, plane.guess(0));
+    T t = plane.round(0);
     // The exact root lies strictly between t's neighbours: decide the window from them when they
     // suffice, exactly otherwise.
     const auto after = [&](T x) {

@@ -1,0 +1,13 @@
+// rayq — forced inlining for the small arithmetic types (Vec3, Bounded, DoubleWord, error-free
+// transformations). GCC's heuristics leave their operators as calls inside the accurate policy's
+// template-heavy decisions, where a call costs more than the operation; forcing them inline
+// measured: accurate sphere 14.6x -> 9.6x the cost of fast (rayq-bench, same run, default flags).
+#pragma once
+
+#if defined(__GNUC__) || defined(__clang__)
+#define RAYQ_INLINE inline __attribute__((always_inline))
+#elif defined(_MSC_VER)
+#define RAYQ_INLINE __forceinline
+#else
+#define RAYQ_INLINE inline
+#endif
