@@ -95,7 +95,8 @@ TYPED_TEST(BadInputTest, HugeButFiniteInputsGiveFiniteAnswersOrNone)
         if (const auto h = intersect(TypeParam::policy, r, prim)) expect_well_formed(r, *h);
     });
     const Sphere<T> huge{Vec3<T>{T(0), T(0), T(0)}, big};
-    if (const auto h = intersect(TypeParam::policy, ray(v3<T>(0, 0, 0), v3<T>(1, 0, 0)), huge)) expect_well_formed(r, *h);
+    const auto from_center = ray(v3<T>(0, 0, 0), v3<T>(1, 0, 0));
+    if (const auto h = intersect(TypeParam::policy, from_center, huge)) expect_well_formed(from_center, *h);
 }
 
 }  // namespace

@@ -61,4 +61,42 @@ inline int certain_sign(const DoubleWord<T>& x)
     return v > slack ? 1 : (-v > slack ? -1 : 0);
 }
 
+// The accurate policy's second filter precision. Double-word T in general; for float, hardware
+// double: products of floats are exact in it and its unit roundoff 2^-53 is below float's
+// double-word bound (u² = 2^-48), at a fraction of the cost of Dekker's arithmetic without FMA.
+template <class T>
+struct Wide {
+    using type = DoubleWord<T>;
+};
+template <>
+struct Wide<float> {
+    using type = Bounded<double>;
+};
+template <class T>
+using wide_t = typename Wide<T>::type;
+
+// A wide number as a T with a certified bound: |exact − v| <= e (the rounding to T included).
+template <class T>
+struct Estimate {
+    T v, e;
+};
+template <class T>
+RAYQ_INLINE Estimate<T> estimate(const DoubleWord<T>& x)
+{
+    const T v = x.hi + x.lo;
+    return {v, grow(x.e + unit_roundoff<T> * std::abs(v))};
+}
+// double -> float rounds to nearest: relative error <= u_float; grow() covers converting e.
+RAYQ_INLINE Estimate<float> estimate(const Bounded<double>& x)
+{
+    const float v = static_cast<float>(x.v);
+    return {v, grow(static_cast<float>(x.e) + unit_roundoff<float> * std::abs(v))};
+}
+
+template <class T>
+RAYQ_INLINE int certain_sign(const Bounded<T>& x)
+{
+    return x.v > x.e ? 1 : (-x.v > x.e ? -1 : 0);
+}
+
 }  // namespace rayq::detail

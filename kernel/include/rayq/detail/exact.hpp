@@ -28,7 +28,7 @@ inline std::atomic<unsigned long long> exact_fallbacks{0};
 namespace detail {
 
 // The sign of expr(N) for the exact inputs: expr is generic over the number type and is called
-// with a zero of Bounded<T> (working precision), then DoubleWord<T> (about twice the precision),
+// with a zero of Bounded<T> (working precision), then wide_t<T> (about twice the precision),
 // and only if neither can decide, of Expansion<T> (exact).
 template <class T, class Expr>
 inline int adaptive_sign(const Expr& expr)
@@ -37,7 +37,7 @@ inline int adaptive_sign(const Expr& expr)
     if (b.v == T(0) && b.e == T(0)) return 0;  // exactly zero (e.g. a plane's leading coefficient)
     if (b.v > b.e) return 1;
     if (-b.v > b.e) return -1;
-    if (const int s = certain_sign(expr(DoubleWord<T>{T(0)}))) return s;
+    if (const int s = certain_sign(expr(wide_t<T>{T(0)}))) return s;
     exact_fallbacks.fetch_add(1, std::memory_order_relaxed);
     return expr(Expansion<T>{}).sign();
 }
@@ -132,13 +132,13 @@ public:
     }
 
     // A float estimate of the root from the coefficients in precision N (stable q-form).
-    template <class N = DoubleWord<T>>
+    template <class N = wide_t<T>>
     T guess(int which) const
     {
         const Residual<N> r = at_zero(N{T(0)});
-        const auto value = [](const auto& x) {
-            if constexpr (std::is_same_v<N, DoubleWord<T>>) return x.hi + x.lo;
-            else return x.v;
+        const auto value = [](const auto& x) -> T {
+            if constexpr (std::is_same_v<N, Bounded<T>>) return x.v;
+            else return estimate(x).v;
         };
         const T a = value(r.a), b = value(r.df), c = value(r.f);
         if (sign_a_ == 0) return -c / b;
@@ -154,26 +154,26 @@ public:
     T round(int which) const
     {
         if (const auto quick = newton_round(which, guess<Bounded<T>>(which))) return *quick;
-        const T careful = guess<DoubleWord<T>>(which);
+        const T careful = guess<wide_t<T>>(which);
         if (const auto quick = newton_round(which, careful)) return *quick;
         return search_round(which, careful);
     }
-    // One Newton step t + δ, δ = −F(t)/F'(t), with F, F' and a evaluated in double-word arithmetic
+    // One Newton step t + δ, δ = −F(t)/F'(t), with F, F' and a evaluated in wide_t arithmetic
     // at t. With x = 4·|a|·|F|/F'² <= 1/2 the nearest root lies within |δ|·x/2 of t + δ (the
     // quadratic's root 2F/(F' ± √(F'² − 4aF)) against its linearization), plus the bounds'
     // effect on δ. If no rounding boundary of T lies within that, fl(t + δ) is correctly rounded.
     std::optional<T> newton_round(int which, T t) const
     {
         if (!std::isfinite(t)) return std::nullopt;
-        const Residual<DoubleWord<T>> r = coef_.at(DoubleWord<T>{t});
+        const Residual<wide_t<T>> r = coef_.at(wide_t<T>{t});
         const T u = unit_roundoff<T>;
-        const T fv = r.f.hi + r.f.lo, dv = r.df.hi + r.df.lo;
-        const T f_err = grow(r.f.e + u * std::abs(fv)), d_err = grow(r.df.e + u * std::abs(dv));
+        const Estimate<T> f = estimate(r.f), df = estimate(r.df), a = estimate(r.a);
+        const T fv = f.v, dv = df.v, f_err = f.e, d_err = df.e;
         const T d_min = (std::abs(dv) - d_err) * (T(1) - T(2) * u);
         if (!(d_min > T(0))) return std::nullopt;
         // The nearest root is the requested one: F' has the sign of an entry (−sign a) at the smaller root.
         if (sign_a_ != 0 && (dv > T(0) ? 1 : -1) * sign_a_ != (which == 0 ? -1 : 1)) return std::nullopt;
-        const T f_max = grow(std::abs(fv) + f_err), a_max = grow(r.a.magnitude() + r.a.e);
+        const T f_max = grow(std::abs(fv) + f_err), a_max = grow(std::abs(a.v) + a.e);
         const T x = grow(T(4) * a_max * f_max / (d_min * d_min));
         if (!(x <= T(0.5))) return std::nullopt;
         const T delta = -fv / dv;
@@ -239,9 +239,9 @@ private:
     {
         if constexpr (std::is_same_v<N, Bounded<T>>) {
             return bounded0_;
-        } else if constexpr (std::is_same_v<N, DoubleWord<T>>) {
-            if (!double_word0_) double_word0_ = coef_(zero);
-            return *double_word0_;
+        } else if constexpr (std::is_same_v<N, wide_t<T>>) {
+            if (!wide0_) wide0_ = coef_(zero);
+            return *wide0_;
         } else {
             return coef_(zero);
         }
@@ -280,7 +280,7 @@ private:
 
     Coef coef_;
     Residual<Bounded<T>> bounded0_;
-    mutable std::optional<Residual<DoubleWord<T>>> double_word0_;
+    mutable std::optional<Residual<wide_t<T>>> wide0_;
     int sign_a_ = 0, sign_disc_ = 0, sign_b_ = 0, sign_c_ = 0;
 };
 
