@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <sstream>
 #include <unistd.h>
@@ -29,6 +30,18 @@ const Program programs[] = {
     {"scene", "rayq-bench-scene", "sphere/float/fast/(loop|scene)/16$", "/(16|1024)$"},
 };
 
+// Google Benchmark writes NaN and Infinity bare (e.g. the "cv" aggregate of a counter that is 0 in
+// every repetition is 0/0), which strict JSON does not allow: they become null.
+std::string strict_json(std::string text)
+{
+    for (const char* bare : {"-NaN", "NaN", "-Infinity", "Infinity"}) {
+        const std::string needle = std::string(": ") + bare;
+        for (std::size_t at = text.find(needle); at != std::string::npos; at = text.find(needle, at))
+            text.replace(at, needle.size(), ": null");
+    }
+    return text;
+}
+
 std::vector<Item> plan(const Settings& s)
 {
     std::vector<Item> items;
@@ -49,7 +62,7 @@ json run(const Settings& s, const Item& item, std::string& csv)
     const int status = run_program(args, /*quiet=*/true);
     if (status != 0) throw std::runtime_error(binary + " exited with status " + std::to_string(status));
     std::ifstream in(out);
-    const json j = json::parse(in);
+    const json j = json::parse(strict_json(std::string(std::istreambuf_iterator<char>(in), {})));
     std::filesystem::remove(out);
     json rows = json::array();
     for (const json& b : j.at("benchmarks")) {
