@@ -10,6 +10,7 @@ packages=(
   libcgal-dev libgmp-dev libmpfr-dev libboost-dev   # validation/oracle: exact arithmetic
   libopenmesh-dev libeigen3-dev      # validation/mesh: tessellations
   nlohmann-json3-dev                 # validation/stats, the report: JSON summaries
+  libceres-dev                       # validation/fit: error-model fits (issue 6)
   gnuplot-nox                        # the report's plots (SVG)
   chromium                           # the report's headless-browser test
 )

@@ -13,10 +13,17 @@ namespace rayq::report {
 Campaign oracle_campaign();
 Campaign mesh_campaign();
 Campaign speed_campaign();
+#ifdef RAYQ_VALIDATE_SWEEP
+Campaign sweep_campaign();  // campaign_sweep.cpp, built when rayq::sweep (Ceres) is
+#endif
 
 const std::vector<Campaign>& all_campaigns()
 {
-    static const std::vector<Campaign> campaigns = {oracle_campaign(), mesh_campaign(), speed_campaign()};
+    static const std::vector<Campaign> campaigns = {oracle_campaign(), mesh_campaign(), speed_campaign()
+#ifdef RAYQ_VALIDATE_SWEEP
+                                                     , sweep_campaign()
+#endif
+    };
     return campaigns;
 }
 
