@@ -11,6 +11,7 @@ packages=(
   libopenmesh-dev libeigen3-dev      # validation/mesh: tessellations
   nlohmann-json3-dev                 # validation/stats, the report: JSON summaries
   libceres-dev                       # validation/fit: error-model fits (issue 6)
+  libembree-dev                      # adapters/embree: rayq primitives in Embree's BVH (issue 7)
   gnuplot-nox                        # the report's plots (SVG)
   chromium                           # the report's headless-browser test
 )
