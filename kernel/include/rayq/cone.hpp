@@ -86,9 +86,9 @@ inline detail::Residual<N> residual(const Cone<T>& cone, const Vec3<N>& o, const
 
 // Accurate: exact decisions, correctly rounded t (detail/exact_crossings.hpp).
 template <class T>
-inline Crossings<T> crossings(accurate_policy, const Ray<T>& ray, const Cone<T>& cone)
+inline Crossings<T> crossings(accurate_policy, const Ray<T>& ray, const Cone<T>& cone, int limit = 2)
 {
-    return detail::exact_curved_crossings(ray, cone, true, cone.caps == Caps::both, {cone.r0 > T(0), cone.r1 > T(0)});
+    return detail::exact_curved_crossings(ray, cone, true, cone.caps == Caps::both, {cone.r0 > T(0), cone.r1 > T(0)}, limit);
 }
 
 template <class T>

@@ -81,9 +81,9 @@ inline detail::Residual<N> residual(const Cylinder<T>& cyl, const Vec3<N>& o, co
 
 // Accurate: exact decisions, correctly rounded t (detail/exact_crossings.hpp).
 template <class T>
-inline Crossings<T> crossings(accurate_policy, const Ray<T>& ray, const Cylinder<T>& cyl)
+inline Crossings<T> crossings(accurate_policy, const Ray<T>& ray, const Cylinder<T>& cyl, int limit = 2)
 {
-    return detail::exact_curved_crossings(ray, cyl, true, cyl.caps == Caps::both, {true, true});
+    return detail::exact_curved_crossings(ray, cyl, true, cyl.caps == Caps::both, {true, true}, limit);
 }
 
 template <class T>

@@ -3,7 +3,9 @@
 //
 // A primitive header supplies three things, found by argument-dependent lookup:
 //   crossings(policy, ray, prim)        the surface crossings along the ray's line, ascending,
-//                                       each with its part and whether the ray enters the solid;
+//                                       each with its part and whether the ray enters the solid
+//                                       (optionally with a trailing limit: at most that many, the
+//                                       first ones in the window — for closest and any hit);
 //   outward_normal(prim, point, part)   the outward normal (any length) at a hit point;
 //   validate(prim)                      whether the primitive is usable;
 // and specializes is_primitive. The queries below are written once for all of them: the
@@ -125,13 +127,33 @@ inline Hit<scalar_t<Prim>> first_hit(Policy policy, const Ray<scalar_t<Prim>>& r
     return h;
 }
 
+// The crossings a closest- or any-hit query needs: the first one in the window. A primitive whose
+// crossings() takes a trailing limit (the accurate curved primitives, where every crossing costs an
+// exactly rounded root) computes no more than that; the others compute all (at most two).
+template <class Policy, class Prim>
+inline auto crossings_up_to(Policy policy, const Ray<scalar_t<Prim>>& ray, const Prim& prim, int limit, int)
+    -> decltype(crossings(policy, ray, prim, limit))
+{
+    return crossings(policy, ray, prim, limit);
+}
+template <class Policy, class Prim>
+inline Crossings<scalar_t<Prim>> crossings_up_to(Policy policy, const Ray<scalar_t<Prim>>& ray, const Prim& prim, int, long)
+{
+    return crossings(policy, ray, prim);
+}
+template <class Policy, class Prim>
+inline Crossings<scalar_t<Prim>> leading_crossings(Policy policy, const Ray<scalar_t<Prim>>& ray, const Prim& prim)
+{
+    return crossings_up_to(policy, ray, prim, 1, 0);
+}
+
 // The t of the first crossing inside (tmin, tmax), if any: the cheap core that closest-hit
 // searches over many primitives run before building one hit record (ray and primitive already
 // accepted).
 template <class Policy, class Prim>
 inline std::optional<scalar_t<Prim>> first_t_in_window(Policy policy, const Ray<scalar_t<Prim>>& ray, const Prim& prim)
 {
-    for (const auto& c : crossings(policy, ray, prim))
+    for (const auto& c : leading_crossings(policy, ray, prim))
         if (in_window(ray, c.t)) return c.t;
     return std::nullopt;
 }
@@ -149,7 +171,7 @@ inline std::optional<Hit<scalar_t<Prim>>> intersect(Policy policy, const Ray<sca
 {
     if (!detail::accepts(ray, prim)) return std::nullopt;
     bool earlier_may_count = false;
-    for (const auto& c : crossings(policy, ray, prim)) {
+    for (const auto& c : detail::leading_crossings(policy, ray, prim)) {
         if (detail::in_window(ray, c.t)) return detail::first_hit(policy, ray, prim, c, earlier_may_count);
         earlier_may_count = earlier_may_count || detail::may_enter_window(policy, ray, prim, c);
     }

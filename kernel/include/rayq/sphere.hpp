@@ -58,9 +58,9 @@ inline detail::Residual<N> residual(const Sphere<T>& s, const Vec3<N>& o, const 
 
 // Accurate: exact decisions, correctly rounded t (detail/exact_crossings.hpp).
 template <class T>
-inline Crossings<T> crossings(accurate_policy, const Ray<T>& ray, const Sphere<T>& s)
+inline Crossings<T> crossings(accurate_policy, const Ray<T>& ray, const Sphere<T>& s, int limit = 2)
 {
-    return detail::exact_curved_crossings(ray, s, false, false, {false, false});
+    return detail::exact_curved_crossings(ray, s, false, false, {false, false}, limit);
 }
 
 template <class T>

@@ -132,10 +132,10 @@ inline Validation validate(const Transformed<Prim, T>& x)
 
 // The object sees origin' = W⁻¹·o and direction' = L⁻¹·d, and the same t and window.
 template <class Policy, class Prim, class T>
-inline Crossings<T> crossings(Policy policy, const Ray<T>& ray, const Transformed<Prim, T>& x)
+inline Crossings<T> crossings(Policy policy, const Ray<T>& ray, const Transformed<Prim, T>& x, int limit = 2)
 {
     const Ray<T> local{x.to_object.point(ray.origin), x.to_object.linear(ray.direction), ray.tmin, ray.tmax};
-    return crossings(policy, local, x.object);
+    return detail::crossings_up_to(policy, local, x.object, limit, 0);
 }
 
 namespace detail {

@@ -171,10 +171,11 @@ private:
 };
 
 // Crossings of a sphere-like (no caps) or axial (slab-clipped, open or capped) curved primitive,
-// with the same interval logic as the floating-point path but exact comparisons.
+// with the same interval logic as the floating-point path but exact comparisons. Only the first
+// `limit` crossings inside the window are returned: each one costs a correctly rounded root.
 template <class Prim>
 inline Crossings<scalar_t<Prim>> exact_curved_crossings(const Ray<scalar_t<Prim>>& ray, const Prim& prim, bool axial, bool capped,
-                                                         CapEnds ends)
+                                                         CapEnds ends, int limit)
 {
     using T = scalar_t<Prim>;
     const ExactSolid<Prim> solid(ray, prim, axial);
@@ -210,7 +211,7 @@ inline Crossings<scalar_t<Prim>> exact_curved_crossings(const Ray<scalar_t<Prim>
         }
     }
     Crossings<T> out;
-    for (int i = 0; i < n && out.count < 2; ++i)
+    for (int i = 0; i < n && out.count < limit; ++i)
         if (found[i].end.finite() && solid.in_window(found[i].end)) out.add(solid.value(found[i].end), found[i].part, found[i].entering);
     return out;
 }
