@@ -148,6 +148,25 @@ public:
         if (t1 < t0) std::swap(t0, t1);
         return which == 0 ? t0 : t1;
     }
+    // A certified interval around the root, from a working-precision guess and the root-location
+    // bound of certify_root on its residual (running error bounds, pbrt-v4 "Managing Rounding
+    // Error"): enough to order ends that are far apart without rounding either exactly. Empty when
+    // the bound cannot be given or cannot tell this root from the other one.
+    std::optional<std::pair<T, T>> enclose(int which) const
+    {
+        const T t = guess<Bounded<T>>(which);
+        if (!std::isfinite(t)) return std::nullopt;
+        const Residual<Bounded<T>> r = coef_.at(Bounded<T>{t});
+        const T f_max = upper(r.f), a_max = upper(r.a), d_min = lower(r.df);
+        // |F'| >= D and D² >= 4·|a|·|F|: the nearest root lies within 2|F|/D (certify_root's first case).
+        if (!(d_min > T(0) && d_min * d_min * (T(1) - T(4) * unit_roundoff<T>) >= grow(T(4) * a_max * f_max))) return std::nullopt;
+        // ... and it is the requested one: F' has the sign of an entry (−sign a) at the smaller root.
+        if (sign_a_ != 0 && (r.df.v > T(0) ? 1 : -1) * sign_a_ != (which == 0 ? -1 : 1)) return std::nullopt;
+        const T h = grow(T(2) * f_max / d_min);
+        const T lo = next_down(t - h), hi = next_up(t + h);  // t ∓ h rounded outward
+        if (!(std::isfinite(lo) && std::isfinite(hi))) return std::nullopt;
+        return std::pair<T, T>{lo, hi};
+    }
     // The root rounded to nearest (ties to even) in T: a certified Newton step in double-word
     // arithmetic from a working-precision guess (enough for most rays), else from a double-word
     // guess (cancellation in the coefficients: far away, near tangency), else an exact search.

@@ -3,6 +3,8 @@
 #pragma once
 
 #include <optional>
+#include <type_traits>
+#include <utility>
 
 #include "../hit.hpp"
 #include "../query.hpp"
@@ -100,8 +102,17 @@ public:
         if (x.kind == y.kind && !x.finite()) return 0;
         if (x.kind == EndKind::neg_inf || y.kind == EndKind::pos_inf) return -1;
         if (x.kind == EndKind::pos_inf || y.kind == EndKind::neg_inf) return 1;
-        // Filter: each exact end lies strictly between the neighbours of its rounded value, so
-        // rounded values two or more ulps apart order the ends.
+        // Filters, cheapest first: disjoint certified intervals (no exact rounding needed; only
+        // where rounding runs in double-word arithmetic — for float inputs it runs in hardware
+        // double and costs no more than the enclosure: measured 5% more instructions with it,
+        // 27% fewer for double), then rounded values two or more ulps apart (each exact end lies
+        // strictly between the neighbours of its rounded value).
+        if constexpr (std::is_same_v<wide_t<T>, DoubleWord<T>>) {
+            if (const auto bx = enclosure(x), by = enclosure(y); bx && by) {
+                if (bx->second < by->first) return -1;
+                if (by->second < bx->first) return 1;
+            }
+        }
         if (const int s = separated(rounded(x), rounded(y))) return s;
         if (x.kind == EndKind::root && y.kind == EndKind::root)
             return side_.sign_disc() == 0 || x.which == y.which ? 0 : (x.which < y.which ? -1 : 1);
@@ -148,6 +159,15 @@ private:
         }
         return *cache_[slot];
     }
+    // A certified interval around the end (memoized): its rounded value's neighbours when that is
+    // already known, else the quadratic's cheap enclosure.
+    std::optional<std::pair<T, T>> enclosure(End e) const
+    {
+        const int slot = e.kind == EndKind::root ? e.which : (e.kind == EndKind::cap0 ? 2 : 3);
+        if (cache_[slot]) return std::pair<T, T>{next_down(*cache_[slot]), next_up(*cache_[slot])};
+        if (!enclosed_[slot]) enclosed_[slot] = quadratic(e).enclose(e.which);
+        return *enclosed_[slot];
+    }
     // sign(x − y) when x and y are at least two ulps apart, else 0.
     static int separated(T x, T y)
     {
@@ -168,6 +188,7 @@ private:
     Quadratic side_;
     std::optional<Quadratic> cap0_, cap1_;
     mutable std::optional<T> cache_[4];  // rounded values: root 0, root 1, cap0, cap1
+    mutable std::optional<std::optional<std::pair<T, T>>> enclosed_[4];  // their enclosures, once tried
 };
 
 // Crossings of a sphere-like (no caps) or axial (slab-clipped, open or capped) curved primitive,
