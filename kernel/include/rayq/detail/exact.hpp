@@ -100,7 +100,7 @@ public:
     template <class Line>
     int sign_at(const Line& x) const
     {
-        return quadratic_sign_at<T>([this](auto zero) { return at_zero(zero); }, x);
+        return quadratic_sign_at<T>([&](auto zero) { return at_zero(zero); }, x);
     }
 
     // sign(x − r) for r the smaller (which = 0) or larger (which = 1) real root, x = −g/dg.
