@@ -87,7 +87,10 @@ inline Hit<scalar_t<Prim>> make_hit(Policy policy, const Ray<scalar_t<Prim>>& ra
         !certainly_within(trim_margins(prim, exact(ray.origin), exact(ray.direction), Bounded<T>{c.t, t_error}, c.part)))
         t_error = std::numeric_limits<T>::infinity();
     const T g2 = T(2) * unit_roundoff<T> / (T(1) - T(2) * unit_roundoff<T>);
-    const auto axis_error = [&](T o, T d) { return grow(root_error * std::abs(d) + g2 * (std::abs(o) + std::abs(c.t * d))); };
+    // A component the ray does not move along gains nothing from t's error (not ∞·0 = NaN).
+    const auto axis_error = [&](T o, T d) {
+        return grow((d == T(0) ? T(0) : root_error * std::abs(d)) + g2 * (std::abs(o) + std::abs(c.t * d)));
+    };
     const Vec3<T> point_error{axis_error(ray.origin.x, ray.direction.x), axis_error(ray.origin.y, ray.direction.y),
                               axis_error(ray.origin.z, ray.direction.z)};
     return {c.t, p, n, c.entering, c.part, t_error, point_error};
