@@ -13,8 +13,9 @@ ctest --test-dir "$build" --output-on-failure -j "$jobs" "$@"
 # Issue 9: the kernel tests (C++17) and the edge-case/replay test again under clang ASan + UBSan
 # (-O1), then each libFuzzer harness for RAYQ_FUZZ_SECONDS (default 30) on its corpus
 # (validation/fuzz/CMakeLists.txt; the CGAL oracle is left out there: too slow under sanitizers).
-# RAYQ_SANITIZE=0 skips this stage.
-if [ "${RAYQ_SANITIZE:-1}" != 0 ] && command -v clang++-14 >/dev/null; then
+# Opt-in for now (RAYQ_SANITIZE=1): from a clean clone on 2 cores the normal stage above takes
+# ~15 min and this one ~12 more, too close to CI's 30-minute limit.
+if [ "${RAYQ_SANITIZE:-0}" != 0 ] && command -v clang++-14 >/dev/null; then
   sanitize="${RAYQ_SANITIZE_BUILD_DIR:-$build-sanitize}"
   cmake -S "$root/validation/fuzz" -B "$sanitize" -G Ninja -DCMAKE_CXX_COMPILER=clang++-14 \
         -DRAYQ_FUZZ_SECONDS="${RAYQ_FUZZ_SECONDS:-30}" >/dev/null
