@@ -153,6 +153,79 @@ TYPED_TEST(AccurateContractTest, WindowAtTheRoot)
 namespace rayq::test {
 namespace {
 
+// Correct rounding commutes with exact scaling: lengths (origin, primitive) scaled by 2^a and the
+// direction by 2^b move every exact root by 2^(a−b), so the accurate t must move by exactly that —
+// at magnitudes whose exact expansions would under- or overflow without the kernel's rescaling
+// (coordinates of 2^200 made the exact search run for ever; a cone near 2^-30 in float was
+// rounded 2 ulps off: found by rayq-fuzz).
+TYPED_TEST(AccurateContractTest, ExactlyScaledInputsGiveExactlyScaledT)
+{
+    using T = TypeParam;
+    constexpr bool is_float = std::is_same_v<T, float>;
+    // (float: squared lengths must stay normal floats for the primitive and ray to be valid: 2^±60)
+    const int scales[][2] = {{-30, 0}, {40, -20}, {is_float ? 60 : 200, 0}, {is_float ? -60 : -300, is_float ? 20 : 100}, {0, is_float ? 60 : 400}};
+    std::mt19937_64 rng(11);
+    std::uniform_real_distribution<double> u(-1, 1);
+    int compared = 0;
+    const auto check = [&](auto prim, const char* name, auto scale_prim) {
+        for (int i = 0; i < 300; ++i) {
+            const Vec3<T> o{T(4 * u(rng)), T(4 * u(rng)), T(4 * u(rng))};
+            const Vec3<T> d = v3<T>(1.2 * u(rng) - o.x, 1.2 * u(rng) - o.y, 1.2 * u(rng) - o.z);
+            const auto h = intersect(accurate, Ray<T>{o, d}, prim);
+            for (const auto& [a, b] : scales) {
+                const auto L = [a = a](T x) { return std::ldexp(x, a); };
+                const Ray<T> scaled_ray{{L(o.x), L(o.y), L(o.z)}, {std::ldexp(d.x, b), std::ldexp(d.y, b), std::ldexp(d.z, b)}};
+                const auto hs = intersect(accurate, scaled_ray, scale_prim(prim, L));
+                ASSERT_EQ(h.has_value(), hs.has_value()) << name << " scaled by 2^" << a << ", 2^" << b << " ray " << i;
+                if (!h) continue;
+                EXPECT_EQ(std::ldexp(h->t, a - b), hs->t) << name << " scaled by 2^" << a << ", 2^" << b << " ray " << i << std::hexfloat
+                                                          << ": o = (" << o.x << ", " << o.y << ", " << o.z << ") d = (" << d.x << ", "
+                                                          << d.y << ", " << d.z << ")";
+                EXPECT_EQ(h->part, hs->part);
+                EXPECT_EQ(h->front_face, hs->front_face);
+                ++compared;
+            }
+        }
+    };
+    check(Sphere<T>{v3<T>(0.1, -0.2, 0.3), T(1)}, "sphere", [](auto s, auto L) {
+        return Sphere<T>{{L(s.center.x), L(s.center.y), L(s.center.z)}, L(s.radius)};
+    });
+    check(Cylinder<T>{v3<T>(-0.3, -0.6, -0.9), v3<T>(0.5, 0.4, 0.8), T(0.7), Caps::both}, "cylinder", [](auto c, auto L) {
+        return Cylinder<T>{{L(c.p0.x), L(c.p0.y), L(c.p0.z)}, {L(c.p1.x), L(c.p1.y), L(c.p1.z)}, L(c.radius), c.caps};
+    });
+    check(Cone<T>{v3<T>(-0.3, -0.6, -0.9), T(0.9), v3<T>(0.5, 0.4, 0.8), T(0), Caps::both}, "cone", [](auto c, auto L) {
+        return Cone<T>{{L(c.p0.x), L(c.p0.y), L(c.p0.z)}, L(c.r0), {L(c.p1.x), L(c.p1.y), L(c.p1.z)}, L(c.r1), c.caps};
+    });
+    EXPECT_GT(compared, 500);
+}
+
+// Found by rayq-fuzz (axial, rim): a float cone near 2^-30 that the ray misses (exact: CGAL), where
+// exact expansions in float underflowed and accurate reported two crossings, out of order.
+TEST(AccurateRegression, TinyFloatConeMissIsExact)
+{
+    const Ray<float> r{{-0x1.a22deep-29f, -0x1.2de2fap-30f, -0x1.4faacep-28f}, {0x1.eee148p-12f, 0x1.803126p-11f, 0x1.42354p-9f}};
+    const Cone<float> c{{-0x1.eb5ab6p-30f, 0x1.d394bep-31f, 0x1.c65802p-30f}, 0.0f, {-0x1.eb5ab6p-30f, 0x1.d394bep-31f, 0x1.f011p-37f},
+                        0x1.65acbcp-32f, Caps::both};
+    EXPECT_FALSE(intersect(accurate, r, c));
+    EXPECT_EQ(intersect_all(accurate, r, c).size(), 0);
+}
+
+// Found by rayq-fuzz (axial, rim): a float cone at 2^71 on which accurate did not return (float
+// expansions overflowed). The double path on the same inputs rounds to the same float.
+TEST(AccurateRegression, LargeFloatConeReturnsTheRoundedRoot)
+{
+    const Ray<float> r{{0x1.6c1cb6p+71f, 0x1.6578bep+71f, 0x1.edec18p+71f}, {-0x1.37p-1f, -0x1.3154p-1f, -0x1.a5ep-1f}};
+    const Cone<float> c{{-0x1.51fp+1f, 0x1p+0f, 0x1.95b5eep-69f}, 0x1.ce6d8p+21f, {0x1.985p+1f, -0x1.c44p-2f, -0x1.e75cp+1f}, 0x1.5b5622p+70f,
+                        Caps::both};
+    const auto h = intersect(accurate, r, c);
+    ASSERT_TRUE(h);
+    const auto hd = intersect(accurate, Ray<double>{{r.origin.x, r.origin.y, r.origin.z}, {r.direction.x, r.direction.y, r.direction.z}},
+                              Cone<double>{{c.p0.x, c.p0.y, c.p0.z}, c.r0, {c.p1.x, c.p1.y, c.p1.z}, c.r1, Caps::both});
+    ASSERT_TRUE(hd);
+    EXPECT_EQ(h->t, 0x1.2bb82ap+72f);
+    EXPECT_EQ(float(hd->t), h->t);
+}
+
 // Found by the oracle campaign and the mesh sweep: near-parallel rays whose first root estimate
 // was far off made the exact search step past ±infinity and never return.
 TEST(AccurateRegression, NearParallelParallelogramReturnsTheExactHit)

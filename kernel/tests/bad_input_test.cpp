@@ -99,5 +99,34 @@ TYPED_TEST(BadInputTest, HugeButFiniteInputsGiveFiniteAnswersOrNone)
     if (const auto h = intersect(TypeParam::policy, from_center, huge)) expect_well_formed(from_center, *h);
 }
 
+// Found by fuzzing (rayq-fuzz --harness transformed): a float ray starting near FLT_MAX meets a
+// transformed plane where o + t·d rounds beyond the largest float. The point saturates; its
+// error bound is infinite.
+TEST(BadInput, HitPointNearTheLargestFloatSaturates)
+{
+    const Ray<float> r{{0x1.f3e59cp+123f, 0x1.4429f6p+127f, 0x1.8b139ep+127f}, {0.0f, 0.0f, 1.0f}, 0.0f,
+                       std::numeric_limits<float>::infinity()};
+    const Plane<float> plane{{-0x1.59p-1f, 0x1.4af8p+0f, 0x1.fffffep+127f}, {-0x1.94bcp+1f, 0x1.c448p+1f, 0x1.db5ffep+1f}};
+    const Affine3<float> to_world{{{0x1.e90b16p-1f, 0x1.28ad9ap-2f, 0x1.f3e59ep-5f, 0x1.a9ee16p+13f},
+                                   {-0x1.0bb66ep-2f, 0x1.75053ap-1f, 0x1.4429f8p-1f, -0x1.60c88p+7f},
+                                   {0x1.1c9f6p-3f, -0x1.3dcc2cp-1f, 0x1.8b13ap-1f, -0x1.b310f4p+13f}}};
+    const Affine3<float> to_object{{{0x1.e90b18p-1f, -0x1.0bb67p-2f, 0x1.1c9f64p-3f, -0x1.5bcf54p+13f},
+                                    {0x1.28ad9ap-2f, 0x1.75053ap-1f, -0x1.3dcc2ep-1f, -0x1.856e7p+13f},
+                                    {0x1.f3e5ap-5f, 0x1.4429f8p-1f, 0x1.8b13a6p-1f, 0x1.3935ecp+13f}}};
+    const Transformed<Plane<float>> x{plane, to_world, to_object};
+    int hits = 0;
+    const auto check = [&](auto policy) {
+        const auto h = checked_intersect(policy, r, x);
+        if (!h) return;
+        ++hits;
+        EXPECT_EQ(h->point.z, std::numeric_limits<float>::max());
+        EXPECT_EQ(h->point_error.z, std::numeric_limits<float>::infinity());
+    };
+    check(fast);
+    check(stable);
+    check(accurate);
+    EXPECT_GT(hits, 0) << "the reproducer no longer reaches the overflow";
+}
+
 }  // namespace
 }  // namespace rayq::test

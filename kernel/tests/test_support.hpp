@@ -50,8 +50,11 @@ void expect_well_formed(const Ray<T>& r, const Hit<T>& h)
     EXPECT_TRUE(std::isfinite(h.t));
     EXPECT_GT(h.t, r.tmin);
     EXPECT_LT(h.t, r.tmax);
+    EXPECT_TRUE(std::isfinite(h.point.x) && std::isfinite(h.point.y) && std::isfinite(h.point.z));
     EXPECT_NEAR(double(length(h.normal)), 1.0, 1e-5);
     EXPECT_LE(double(dot(h.normal, r.direction)), 0.0);
+    EXPECT_GE(h.t_error, T(0));  // not NaN
+    EXPECT_TRUE(h.point_error.x >= T(0) && h.point_error.y >= T(0) && h.point_error.z >= T(0));
 }
 
 // intersect() and occluded() agree, and a hit is well formed.

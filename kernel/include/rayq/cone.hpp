@@ -37,7 +37,7 @@ inline Validation validate(const Cone<T>& c)
         .require(c.r0 >= T(0), Defect::nonpositive_radius, "Cone: r0 is negative")
         .require(c.r1 >= T(0), Defect::nonpositive_radius, "Cone: r1 is negative")
         .require(c.r0 > T(0) || c.r1 > T(0), Defect::degenerate, "Cone: r0 and r1 are both zero (a segment)")
-        .nonzero(c.p1 - c.p0, "Cone: axis p1 - p0 has zero length", "Cone: axis p1 - p0 is too long for the number type")
+        .nonzero(c.p1 - c.p0, "Cone: axis p1 - p0 has zero length (or its squared length underflows the number type)", "Cone: axis p1 - p0 is too long for the number type")
         .require(c.caps == Caps::none || c.caps == Caps::both, Defect::degenerate, "Cone: caps is not a Caps value")
         .result();
 }
@@ -89,6 +89,13 @@ template <class T>
 inline Crossings<T> crossings(accurate_policy, const Ray<T>& ray, const Cone<T>& cone, int limit = 2)
 {
     return detail::exact_curved_crossings(ray, cone, true, cone.caps == Caps::both, {cone.r0 > T(0), cone.r1 > T(0)}, limit);
+}
+
+// Every point and radius of the cone, for the exact path's rescaling (detail/exact_crossings.hpp).
+template <class T, class F>
+inline void each_length(Cone<T>& c, F&& f)
+{
+    f(c.p0), f(c.r0), f(c.p1), f(c.r1);
 }
 
 template <class T>

@@ -41,7 +41,7 @@ inline Validation validate(const Cylinder<T>& c)
         .finite(c.p1, "Cylinder: p1 is NaN or infinite")
         .finite(c.radius, "Cylinder: radius is NaN or infinite")
         .positive(c.radius, "Cylinder: radius is zero or negative")
-        .nonzero(c.p1 - c.p0, "Cylinder: axis p1 - p0 has zero length", "Cylinder: axis p1 - p0 is too long for the number type")
+        .nonzero(c.p1 - c.p0, "Cylinder: axis p1 - p0 has zero length (or its squared length underflows the number type)", "Cylinder: axis p1 - p0 is too long for the number type")
         .require(c.caps == Caps::none || c.caps == Caps::both, Defect::degenerate, "Cylinder: caps is not a Caps value")
         .result();
 }
@@ -84,6 +84,13 @@ template <class T>
 inline Crossings<T> crossings(accurate_policy, const Ray<T>& ray, const Cylinder<T>& cyl, int limit = 2)
 {
     return detail::exact_curved_crossings(ray, cyl, true, cyl.caps == Caps::both, {true, true}, limit);
+}
+
+// Every point and radius of the cylinder, for the exact path's rescaling (detail/exact_crossings.hpp).
+template <class T, class F>
+inline void each_length(Cylinder<T>& c, F&& f)
+{
+    f(c.p0), f(c.p1), f(c.radius);
 }
 
 template <class T>

@@ -30,7 +30,7 @@ inline Validation validate(const Disk<T>& d)
         .finite(d.normal, "Disk: normal is NaN or infinite")
         .finite(d.radius, "Disk: radius is NaN or infinite")
         .positive(d.radius, "Disk: radius is zero or negative")
-        .nonzero(d.normal, "Disk: normal has zero length", "Disk: normal is too long for the number type")
+        .nonzero(d.normal, "Disk: normal has zero length (or its squared length underflows the number type)", "Disk: normal is too long for the number type")
         .result();
 }
 

@@ -14,9 +14,9 @@ enum class Part : unsigned char { surface, cap0, cap1 };
 template <class T>
 struct Hit {
     T t;              // ray parameter of the hit
-    Vec3<T> point;    // origin + t·direction
-    Vec3<T> normal;   // unit, facing the incoming ray: dot(normal, direction) <= 0
-    bool front_face;  // the ray arrives from outside (the side the outward normal points to)
+    Vec3<T> point;    // origin + t·direction, finite (saturated at the largest float)
+    Vec3<T> normal;   // unit, facing the incoming ray: dot(normal, direction) <= 0 in T
+    bool front_face;  // the ray arrives from outside (the crossing's side; exact under accurate)
     Part part;
     // Certified: the exact first hit of the (exactly represented) inputs lies in
     // [t − t_error, t + t_error]; infinite when that cannot be proven (near a rim, an edge, the

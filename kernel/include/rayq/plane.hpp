@@ -26,7 +26,7 @@ inline Validation validate(const Plane<T>& p)
     return detail::Validator{}
         .finite(p.point, "Plane: point is NaN or infinite")
         .finite(p.normal, "Plane: normal is NaN or infinite")
-        .nonzero(p.normal, "Plane: normal has zero length", "Plane: normal is too long for the number type")
+        .nonzero(p.normal, "Plane: normal has zero length (or its squared length underflows the number type)", "Plane: normal is too long for the number type")
         .result();
 }
 

@@ -3,6 +3,8 @@
 // Named constructors build the classic quadrics; orient the unbounded ones with Transformed.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <limits>
 
 #include "detail/bounded.hpp"
@@ -196,8 +198,23 @@ inline detail::Residual<N> residual(const Quadric<T>& q, const Vec3<N>& o, const
 template <class T>
 inline Vec3<T> outward_normal(const Quadric<T>& q, const Vec3<T>& p, Part)
 {
-    return {T(2) * q.A * p.x + q.D * p.y + q.E * p.z + q.G, T(2) * q.B * p.y + q.D * p.x + q.F * p.z + q.H,
-            T(2) * q.C * p.z + q.E * p.x + q.F * p.y + q.I};
+    // The gradient, every coefficient scaled by s (a power of two: only the direction matters).
+    const auto gradient = [&](T s) -> Vec3<T> {
+        return {T(2) * (s * q.A) * p.x + (s * q.D) * p.y + (s * q.E) * p.z + s * q.G,
+                T(2) * (s * q.B) * p.y + (s * q.D) * p.x + (s * q.F) * p.z + s * q.H,
+                T(2) * (s * q.C) * p.z + (s * q.E) * p.x + (s * q.F) * p.y + s * q.I};
+    };
+    const Vec3<T> g = gradient(T(1));
+    if (std::isfinite(g.x) && std::isfinite(g.y) && std::isfinite(g.z)) return g;
+    // Overflow (a coefficient or the point near the largest float): scale so that each of the
+    // four terms of a component, at most 2·|coefficient|·max(|p|, 1), stays below 2^(max_exponent−3);
+    // the terms lost to underflow are far below the sum's rounding.
+    const T coefficient = std::max({std::abs(q.A), std::abs(q.B), std::abs(q.C), std::abs(q.D), std::abs(q.E), std::abs(q.F),
+                                    std::abs(q.G), std::abs(q.H), std::abs(q.I)});
+    const T extent = std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z), T(1)});
+    if (!(std::isfinite(coefficient) && std::isfinite(extent))) return g;
+    const int excess = std::ilogb(coefficient) + std::ilogb(extent) + 6 - std::numeric_limits<T>::max_exponent;
+    return gradient(std::ldexp(T(1), -std::max(excess, 0)));
 }
 
 }  // namespace rayq

@@ -13,6 +13,8 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <optional>
 #include <type_traits>
 
@@ -62,7 +64,14 @@ inline Hit<scalar_t<Prim>> make_hit(Policy policy, const Ray<scalar_t<Prim>>& ra
                                      const Crossing<scalar_t<Prim>>& c)
 {
     using T = scalar_t<Prim>;
-    const Vec3<T> p = detail::point_at(policy, ray.origin, ray.direction, c.t);
+    Vec3<T> p = detail::point_at(policy, ray.origin, ray.direction, c.t);
+    // A point beyond the largest float (a ray starting near it) saturates to the nearest finite
+    // value, as rounding with saturation would; its error bound below becomes infinite.
+    const auto saturate = [](T& x) {
+        if (std::isinf(x)) x = std::copysign(std::numeric_limits<T>::max(), x);
+    };
+    const bool saturated[3] = {std::isinf(p.x), std::isinf(p.y), std::isinf(p.z)};
+    saturate(p.x), saturate(p.y), saturate(p.z);
     Vec3<T> n = unit(outward_normal(prim, p, c.part));
     // Face the incoming ray: outward where it enters, inward where it leaves. The side comes from
     // the crossing (the root order; exact under the accurate policy), not from the sign of
@@ -71,6 +80,10 @@ inline Hit<scalar_t<Prim>> make_hit(Policy policy, const Ray<scalar_t<Prim>>& ra
     // A point rounded onto a degenerate spot (the center of a far sphere whose t the fast policy
     // got wrong, a cone's apex) has no normal; the record still promises a unit one facing the ray.
     if (n.x == T(0) && n.y == T(0) && n.z == T(0)) n = -unit(ray.direction);
+    // The promise is dot(normal, direction) <= 0 as computed in T. Where the side and the rounded
+    // normal disagree — grazing incidence, or a point a non-exact policy placed off the surface —
+    // the normal is turned to face the ray; front_face keeps the crossing's side.
+    if (dot(n, ray.direction) > T(0)) n = -n;
     // A posteriori, independent of how t was found: bounds on F(t), F'(t) and a certify how far
     // the exact root can be (detail::certify_root). The point then errs by t_error·|d| plus the
     // rounding of o + t·d (at most two roundings: γ(2)·(|o| + |t·d|), pbrt-v4 §6.8.5).
@@ -91,8 +104,10 @@ inline Hit<scalar_t<Prim>> make_hit(Policy policy, const Ray<scalar_t<Prim>>& ra
     const auto axis_error = [&](T o, T d) {
         return grow((d == T(0) ? T(0) : root_error * std::abs(d)) + g2 * (std::abs(o) + std::abs(c.t * d)));
     };
-    const Vec3<T> point_error{axis_error(ray.origin.x, ray.direction.x), axis_error(ray.origin.y, ray.direction.y),
-                              axis_error(ray.origin.z, ray.direction.z)};
+    constexpr T inf = std::numeric_limits<T>::infinity();
+    const Vec3<T> point_error{saturated[0] ? inf : axis_error(ray.origin.x, ray.direction.x),
+                              saturated[1] ? inf : axis_error(ray.origin.y, ray.direction.y),
+                              saturated[2] ? inf : axis_error(ray.origin.z, ray.direction.z)};
     return {c.t, p, n, c.entering, c.part, t_error, point_error};
 }
 

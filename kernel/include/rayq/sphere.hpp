@@ -66,4 +66,11 @@ inline Crossings<T> crossings(accurate_policy, const Ray<T>& ray, const Sphere<T
 template <class T>
 inline Vec3<T> outward_normal(const Sphere<T>& s, const Vec3<T>& p, Part) { return p - s.center; }
 
+// Every point and radius of the sphere, for the exact path's rescaling (detail/exact_crossings.hpp).
+template <class T, class F>
+inline void each_length(Sphere<T>& s, F&& f)
+{
+    f(s.center), f(s.radius);
+}
+
 }  // namespace rayq

@@ -101,17 +101,30 @@ inline bool certainly_within(const Margins<Bounded<T>>& ms)
 // of the quadratic in h, in the cancellation-free form 2F/(F' ± √…)). Otherwise, if a·F <= 0 is
 // certain (so the discriminant F'² − 4aF >= 0) and |a| >= A > 0, every root has
 // |h| <= |F'|max/A + √(|F|max/A) (Cauchy's bound). Otherwise (near tangency, where the exact
-// discriminant may be negative and the ray miss) no bound: +infinity.
+// discriminant may be negative and the ray miss) no bound: +infinity. near_root_distance is the
+// first case alone, which also says that the root found is the one nearest t.
+template <class T>
+inline T near_root_distance(const Residual<Bounded<T>>& r)
+{
+    const T f_max = upper(r.f), a_max = upper(r.a), d_min = lower(r.df);
+    if (d_min > T(0) && d_min * d_min * (T(1) - T(4) * unit_roundoff<T>) >= grow(T(4) * a_max * f_max)) {
+        const T h = grow(T(2) * f_max / d_min);
+        if (h >= T(0)) return h;  // not NaN: overflowed bounds (inf/inf) certify nothing
+    }
+    return std::numeric_limits<T>::infinity();
+}
+
 template <class T>
 inline T certify_root(const Residual<Bounded<T>>& r)
 {
-    const T f_max = upper(r.f), a_max = upper(r.a), d_min = lower(r.df);
-    if (d_min > T(0) && d_min * d_min * (T(1) - T(4) * unit_roundoff<T>) >= grow(T(4) * a_max * f_max))
-        return grow(T(2) * f_max / d_min);
-    const T a_min = lower(r.a), f_min = lower(r.f);
+    if (const T h = near_root_distance(r); h < std::numeric_limits<T>::infinity()) return h;
+    const T f_max = upper(r.f), a_min = lower(r.a), f_min = lower(r.f);
     const bool opposite = f_min > T(0) && (r.a.v > T(0)) != (r.f.v > T(0));
     const bool f_zero = r.f.v == T(0) && r.f.e == T(0);
-    if (a_min > T(0) && (opposite || f_zero)) return grow(grow(upper(r.df) / a_min) + grow(std::sqrt(grow(f_max / a_min))));
+    if (a_min > T(0) && (opposite || f_zero)) {
+        const T h = grow(grow(upper(r.df) / a_min) + grow(std::sqrt(grow(f_max / a_min))));
+        if (h >= T(0)) return h;
+    }
     return std::numeric_limits<T>::infinity();
 }
 

@@ -27,9 +27,16 @@ inline std::atomic<unsigned long long> exact_fallbacks{0};
 
 namespace detail {
 
+// The components of the exact fallback's expansions. An expansion is exact only while no product
+// under- or overflows; float inputs are exact in double, whose exponent range keeps products of
+// up to eight float factors in range (float's own did not: a cone near 2^-30 underflowed and a
+// root was rounded 2 ulps off, fixtures/fuzz/axial/crash-ascending-*).
+template <class T> struct ExactComponent { using type = T; };
+template <> struct ExactComponent<float> { using type = double; };
+
 // The sign of expr(N) for the exact inputs: expr is generic over the number type and is called
 // with a zero of Bounded<T> (working precision), then wide_t<T> (about twice the precision),
-// and only if neither can decide, of Expansion<T> (exact).
+// and only if neither can decide, of Expansion (exact).
 template <class T, class Expr>
 inline int adaptive_sign(const Expr& expr)
 {
@@ -39,7 +46,7 @@ inline int adaptive_sign(const Expr& expr)
     if (-b.v > b.e) return -1;
     if (const int s = certain_sign(expr(wide_t<T>{T(0)}))) return s;
     exact_fallbacks.fetch_add(1, std::memory_order_relaxed);
-    return expr(Expansion<T>{}).sign();
+    return expr(Expansion<typename ExactComponent<T>::type>{}).sign();
 }
 
 // A point on the ray's parameter line is given exactly as the root t = −g/dg of a linear
@@ -157,12 +164,11 @@ public:
         const T t = guess<Bounded<T>>(which);
         if (!std::isfinite(t)) return std::nullopt;
         const Residual<Bounded<T>> r = coef_.at(Bounded<T>{t});
-        const T f_max = upper(r.f), a_max = upper(r.a), d_min = lower(r.df);
-        // |F'| >= D and D² >= 4·|a|·|F|: the nearest root lies within 2|F|/D (certify_root's first case).
-        if (!(d_min > T(0) && d_min * d_min * (T(1) - T(4) * unit_roundoff<T>) >= grow(T(4) * a_max * f_max))) return std::nullopt;
+        // The nearest root lies within h of t ...
+        const T h = near_root_distance(r);
+        if (!(h < std::numeric_limits<T>::infinity())) return std::nullopt;
         // ... and it is the requested one: F' has the sign of an entry (−sign a) at the smaller root.
         if (sign_a_ != 0 && (r.df.v > T(0) ? 1 : -1) * sign_a_ != (which == 0 ? -1 : 1)) return std::nullopt;
-        const T h = grow(T(2) * f_max / d_min);
         const T lo = next_down(t - h), hi = next_up(t + h);  // t ∓ h rounded outward
         if (!(std::isfinite(lo) && std::isfinite(hi))) return std::nullopt;
         return std::pair<T, T>{lo, hi};
@@ -193,11 +199,14 @@ public:
         // The nearest root is the requested one: F' has the sign of an entry (−sign a) at the smaller root.
         if (sign_a_ != 0 && (dv > T(0) ? 1 : -1) * sign_a_ != (which == 0 ? -1 : 1)) return std::nullopt;
         const T f_max = grow(std::abs(fv) + f_err), a_max = grow(std::abs(a.v) + a.e);
-        const T x = grow(T(4) * a_max * f_max / (d_min * d_min));
+        // Quotients before products: grow() covers one underflow's absolute error, which a later
+        // division by a small F' would magnify (a float sphere near 2^-60 was rounded 1 ulp off).
+        const T delta_max = grow(f_max / d_min);
+        const T x = grow(grow(T(4) * a_max * delta_max) / d_min);
         if (!(x <= T(0.5))) return std::nullopt;
         const T delta = -fv / dv;
-        const T delta_max = grow(f_max / d_min);
-        const T spread = grow(grow(delta_max * x / T(2)) + grow((f_err * std::abs(dv) + std::abs(fv) * d_err) / (std::abs(dv) * d_min)) +
+        // |δ − fv/dv| over the bounds of F and F': f_err/D + |fv/dv|·d_err/D.
+        const T spread = grow(grow(delta_max * x / T(2)) + grow(grow(f_err / d_min) + grow(std::abs(delta) * grow(d_err / d_min))) +
                               u * std::abs(delta));
         const T rounded = t + delta;
         if (!std::isfinite(rounded)) return std::nullopt;

@@ -2,6 +2,8 @@
 // window) made exactly on the float inputs, and every t rounded correctly from the exact root.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <optional>
 #include <type_traits>
 #include <utility>
@@ -195,8 +197,8 @@ private:
 // with the same interval logic as the floating-point path but exact comparisons. Only the first
 // `limit` crossings inside the window are returned: each one costs a correctly rounded root.
 template <class Prim>
-inline Crossings<scalar_t<Prim>> exact_curved_crossings(const Ray<scalar_t<Prim>>& ray, const Prim& prim, bool axial, bool capped,
-                                                         CapEnds ends, int limit)
+inline Crossings<scalar_t<Prim>> exact_curved_crossings_unscaled(const Ray<scalar_t<Prim>>& ray, const Prim& prim, bool axial, bool capped,
+                                                                  CapEnds ends, int limit)
 {
     using T = scalar_t<Prim>;
     const ExactSolid<Prim> solid(ray, prim, axial);
@@ -234,6 +236,64 @@ inline Crossings<scalar_t<Prim>> exact_curved_crossings(const Ray<scalar_t<Prim>
     Crossings<T> out;
     for (int i = 0; i < n && out.count < limit; ++i)
         if (found[i].end.finite() && solid.in_window(found[i].end)) out.add(solid.value(found[i].end), found[i].part, found[i].entering);
+    return out;
+}
+
+// x·2^k, and whether that is exact (no overflow, no bits lost to underflow).
+template <class T>
+inline bool scale_exactly(T& x, int k)
+{
+    const T y = std::ldexp(x, k);
+    if (!(std::ldexp(y, -k) == x)) return false;
+    x = y;
+    return true;
+}
+
+// The same, with the inputs' units changed first when their magnitudes are far from 1. Expansions
+// are exact only while no product (up to about twelve factors: a discriminant compared with a cap's
+// t) under- or overflows, and distances of 2^200 in double made them overflow (and the root search
+// run for ever). The products are of differences (o − c, p1 − p0), radii and the direction, so
+// the scale comes from those: every point (the origin's and the primitive's) and radius is scaled
+// by 2^-kl and the direction by 2^-kd, bringing the largest distance and direction component near
+// 1. The residuals are homogeneous, so every sign is unchanged, and t' = t·2^(kd−kl) exactly,
+// which is undone on the rounded t.
+template <class Prim>
+inline Crossings<scalar_t<Prim>> exact_curved_crossings(const Ray<scalar_t<Prim>>& ray, const Prim& prim, bool axial, bool capped,
+                                                         CapEnds ends, int limit)
+{
+    using T = scalar_t<Prim>;
+    Prim scaled = prim;
+    T length = T(0);  // the largest distance from the origin to a point of the primitive, or radius
+    each_length(scaled, [&](auto& x) {
+        if constexpr (std::is_same_v<std::decay_t<decltype(x)>, T>)
+            length = std::max(length, std::abs(x));
+        else
+            length = std::max({length, std::abs(x.x - ray.origin.x), std::abs(x.y - ray.origin.y), std::abs(x.z - ray.origin.z)});
+    });
+    const T direction = std::max({std::abs(ray.direction.x), std::abs(ray.direction.y), std::abs(ray.direction.z)});
+    constexpr T lo = T(0x1p-64), hi = T(0x1p64);  // 2^±64: twelve factors stay within double's and float's (as double) range
+    if ((length == T(0) || (length >= lo && length <= hi)) && direction >= lo && direction <= hi)
+        return exact_curved_crossings_unscaled(ray, prim, axial, capped, ends, limit);
+    const int kl = length == T(0) || !std::isfinite(length) ? 0 : std::ilogb(length), kd = std::ilogb(direction);
+    Ray<T> r = ray;
+    bool exact = true;
+    const auto length_unit = [&](auto& x) {
+        if constexpr (std::is_same_v<std::decay_t<decltype(x)>, T>)
+            exact = exact && scale_exactly(x, -kl);
+        else
+            exact = exact && scale_exactly(x.x, -kl) && scale_exactly(x.y, -kl) && scale_exactly(x.z, -kl);
+    };
+    each_length(scaled, length_unit);
+    length_unit(r.origin);
+    for (T* x : {&r.direction.x, &r.direction.y, &r.direction.z}) exact = exact && scale_exactly(*x, -kd);
+    for (T* x : {&r.tmin, &r.tmax}) exact = exact && scale_exactly(*x, kd - kl);
+    if (!exact) return exact_curved_crossings_unscaled(ray, prim, axial, capped, ends, limit);
+    Crossings<T> out = exact_curved_crossings_unscaled(r, scaled, axial, capped, ends, limit);
+    for (Crossing<T>& c : out.item) {
+        c.t = std::ldexp(c.t, kl - kd);  // exact unless subnormal or beyond the largest float
+        if (!(c.t > ray.tmin)) c.t = next_up(ray.tmin);
+        if (!(c.t < ray.tmax)) c.t = next_down(ray.tmax);
+    }
     return out;
 }
 

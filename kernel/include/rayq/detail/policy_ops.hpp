@@ -53,8 +53,10 @@ inline Vec3<T> point_at(Policy, const Vec3<T>& origin, const Vec3<T>& direction,
 template <class T>
 inline Vec3<T> unit(const Vec3<T>& v)
 {
+    // Every component checked: std::max skips a NaN that is not first (NaN < x is false).
+    if (!(std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z))) return {T(0), T(0), T(0)};
     const T m = std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
-    if (!(m > T(0)) || !(m <= std::numeric_limits<T>::max())) return {T(0), T(0), T(0)};
+    if (!(m > T(0))) return {T(0), T(0), T(0)};
     const Vec3<T> s = v / m;
     return s / std::sqrt(rayq::dot(s, s));
 }
