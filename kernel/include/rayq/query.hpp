@@ -81,9 +81,16 @@ inline Hit<scalar_t<Prim>> make_hit(Policy policy, const Ray<scalar_t<Prim>>& ra
     // got wrong, a cone's apex) has no normal; the record still promises a unit one facing the ray.
     if (n.x == T(0) && n.y == T(0) && n.z == T(0)) n = -unit(ray.direction);
     // The promise is dot(normal, direction) <= 0 as computed in T. Where the side and the rounded
-    // normal disagree — grazing incidence, or a point a non-exact policy placed off the surface —
-    // the normal is turned to face the ray; front_face keeps the crossing's side.
-    if (dot(n, ray.direction) > T(0)) n = -n;
+    // normal disagree — grazing incidence, where the exact normal is nearly perpendicular to d, or a
+    // point a non-exact policy placed off the surface — the normal is reflected across the plane
+    // perpendicular to d (a flip would turn a grazing normal by ~π), nudged by an ulp while
+    // rounding keeps the sign; front_face keeps the crossing's side.
+    if (dot(n, ray.direction) > T(0)) {
+        const Vec3<T> u = unit(ray.direction);
+        for (int i = 0; i < 3 && dot(n, ray.direction) > T(0); ++i)
+            n = unit(n - (T(2) * dot(n, u) + std::numeric_limits<T>::epsilon()) * u);
+        if (dot(n, ray.direction) > T(0)) n = -n;
+    }
     // A posteriori, independent of how t was found: bounds on F(t), F'(t) and a certify how far
     // the exact root can be (detail::certify_root). The point then errs by t_error·|d| plus the
     // rounding of o + t·d (at most two roundings: γ(2)·(|o| + |t·d|), pbrt-v4 §6.8.5).

@@ -229,12 +229,18 @@ public:
         int c = at(guess);
         if (c == 0) return guess;
         // Gallop away from guess in ulps until the root is bracketed, then bisect on the ordered bits.
-        std::int64_t lo = key(guess), hi = lo, step = 1;
+        std::int64_t lo = key(guess), hi = lo;
+        std::uint64_t step = 1;
         const int toward = -c;  // +1: root above guess
         constexpr T inf = std::numeric_limits<T>::infinity();
         const std::int64_t last = key(toward > 0 ? inf : -inf);  // never step past ±infinity
         for (;;) {
-            const std::int64_t next = toward > 0 ? std::min(lo + step, last) : std::max(lo - step, last);
+            // Saturating: lo ± step must not overflow (a root beyond the largest float gallops all
+            // the way across the keys; found by the report's fuzz campaign on a triangle at 2^177).
+            // (Unsigned: the keys of two floats can be 2^64 apart.)
+            const std::uint64_t room = toward > 0 ? std::uint64_t(last) - std::uint64_t(lo) : std::uint64_t(lo) - std::uint64_t(last);
+            const std::int64_t next =
+                step >= room ? last : std::int64_t(toward > 0 ? std::uint64_t(lo) + step : std::uint64_t(lo) - step);
             const T y = value(next);
             const int cy = std::isfinite(y) ? at(y) : toward;
             if (cy == 0) return y;
@@ -243,7 +249,7 @@ public:
                 break;
             }
             lo = next;
-            step *= 2;
+            if (step < room) step *= 2;
         }
         if (lo > hi) std::swap(lo, hi);
         while (hi - lo > 1) {  // invariant: the root lies strictly between value(lo) and value(hi)
