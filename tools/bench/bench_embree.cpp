@@ -25,6 +25,10 @@
 // rayq's fast/stable (scalar and in Embree) against rayq::accurate (exact on the same float
 // inputs), plus the t error of agreeing hits in ulps. The same numbers go into the benchmark
 // JSON's context (accuracy.*).
+//
+// --answers_in=FILE --answers_out=FILE (optional) answer given cases with Embree's native sphere,
+// for rayq-validate's speed campaign, which measures the answers against the exact oracle on the
+// oracle campaign's own float sphere cases (write_answers below has the format).
 #include <benchmark/benchmark.h>
 #include <rayq/embree.hpp>
 #include <rayq/rayq.hpp>
@@ -38,6 +42,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <functional>
@@ -544,6 +549,53 @@ std::string accuracy_json(std::size_t cases, std::uint64_t seed, bool offset_ori
     return js.str();
 }
 
+// ---- answers: Embree's native sphere on cases given in a file ----
+
+// Input: one case per line, 12 numbers, each exactly a float, as C99 hex literals (printf %a) or
+// inf/-inf: origin.xyz direction.xyz tmin tmax center.xyz radius. Output: one line per case, "miss"
+// or "hit t Ng.x Ng.y Ng.z" (%a; Ng as Embree returns it: not normalized, outward). Each case is
+// answered by a scene holding its sphere alone, in the run's floating-point mode (FTZ/DAZ as set
+// for the benchmarks). Throws on an unreadable or malformed file.
+void write_answers(const std::string& in_path, const std::string& out_path)
+{
+    std::ifstream in(in_path);
+    if (!in) throw std::runtime_error("cannot read " + in_path);
+    std::ofstream out(out_path);
+    NativeScene scene;
+    RTCGeometry g = rtcNewGeometry(device(), RTC_GEOMETRY_TYPE_SPHERE_POINT);
+    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), 1));
+    rtcCommitGeometry(g);
+    rtcAttachGeometry(scene.scene, g);
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    std::size_t line_number = 0;
+    for (std::string line; std::getline(in, line);) {
+        ++line_number;
+        std::istringstream words(line);
+        float x[12];
+        for (float& f : x) {
+            std::string w;
+            char* end = nullptr;
+            if (words >> w) f = std::strtof(w.c_str(), &end);
+            if (!end || *end != 0) throw std::runtime_error(in_path + ":" + std::to_string(line_number) + ": expected 12 numbers");
+        }
+        const Ray ray{{x[0], x[1], x[2]}, {x[3], x[4], x[5]}, x[6], x[7]};
+        v[0] = x[8], v[1] = x[9], v[2] = x[10], v[3] = x[11];
+        rtcUpdateGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0);
+        rtcCommitGeometry(g);
+        scene.commit();
+        RTCRayHit rh = embree_ray(ray);
+        rtcIntersect1(scene.scene, &ctx, &rh);
+        char buf[160] = "miss";
+        if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID)
+            std::snprintf(buf, sizeof buf, "hit %a %a %a %a", double(rh.ray.tfar), double(rh.hit.Ng_x), double(rh.hit.Ng_y), double(rh.hit.Ng_z));
+        out << buf << "\n";
+    }
+    rtcReleaseGeometry(g);
+    out.close();
+    if (!out) throw std::runtime_error("cannot write " + out_path);
+}
+
 }  // namespace
 
 int main(int argc, char** argv)
@@ -552,13 +604,15 @@ int main(int argc, char** argv)
     // its callbacks.
     // --ftz=0 leaves them off (to measure what the adapter's switching costs).
     bool ftz = true;
-    std::string accuracy_out;
+    std::string accuracy_out, answers_in, answers_out;
     std::size_t accuracy_cases = 20000;
     std::vector<char*> args;
     for (int i = 0; i < argc; ++i) {
         const std::string a = argv[i];
         if (a.rfind("--accuracy_json=", 0) == 0) accuracy_out = a.substr(16);
         else if (a.rfind("--accuracy_cases=", 0) == 0) accuracy_cases = std::stoul(a.substr(17));
+        else if (a.rfind("--answers_in=", 0) == 0) answers_in = a.substr(13);
+        else if (a.rfind("--answers_out=", 0) == 0) answers_out = a.substr(14);
         else if (a == "--ftz=0" || a == "--ftz=1") ftz = a == "--ftz=1";
         else args.push_back(argv[i]);
     }
@@ -570,6 +624,18 @@ int main(int argc, char** argv)
     int n = static_cast<int>(args.size());
     benchmark::Initialize(&n, args.data());
     if (benchmark::ReportUnrecognizedArguments(n, args.data())) return 2;
+    if (answers_in.empty() != answers_out.empty()) {
+        std::fprintf(stderr, "rayq-bench-embree: --answers_in and --answers_out go together\n");
+        return 2;
+    }
+    if (!answers_in.empty()) {
+        try {
+            write_answers(answers_in, answers_out);
+        } catch (const std::exception& e) {
+            std::fprintf(stderr, "rayq-bench-embree: %s\n", e.what());
+            return 2;
+        }
+    }
     if (!accuracy_out.empty()) {
         // Origins at 0 (o − c exact) and at random points of [-1, 1]³ (o − c rounded).
         const std::string js = "{\"tool\": \"rayq-bench-embree\", \"note\": \"ns_per_ray: one wall-clock pass over the cases, same process; "

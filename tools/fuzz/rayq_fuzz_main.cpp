@@ -24,9 +24,7 @@
 #include <string>
 #include <vector>
 
-#include <rayq/fuzz/decoder.hpp>
-#include <rayq/fuzz/fixture_line.hpp>
-#include <rayq/fuzz/invariants.hpp>
+#include "fuzz_driver.hpp"
 
 namespace {
 
@@ -42,49 +40,29 @@ int usage(const char* why)
     return 2;
 }
 
-std::string hex(const std::vector<std::uint8_t>& bytes)
-{
-    std::string s;
-    for (auto b : bytes) {
-        char buf[3];
-        std::snprintf(buf, sizeof buf, "%02x", b);
-        s += buf;
-    }
-    return s;
-}
-
 struct Run {
     Options options;
     std::size_t cases = 0, findings = 0, hits = 0;
 };
 
-// Checks one input; prints a finding. Returns whether it passed; `key` names its kind.
+// Checks one input; prints a finding. Returns whether it passed; `key` names its kind
+// (primitive-type-construction).
 bool run_one(Harness h, const std::vector<std::uint8_t>& bytes, Run& run, std::string* key = nullptr)
 {
-    bool ok = true;
-    decode(h, bytes.data(), bytes.size(), [&](const auto& c) {
-        Options options = run.options;
-        options.scene_copies = 1 + (bytes.empty() ? 0 : bytes.back() % 9);
-        const Checked r = check(c.ray, c.prim, options);
-        ++run.cases;
-        run.hits += std::size_t(r.hits);
-        if (key) {
-            using T = rayq::scalar_t<std::decay_t<decltype(c.prim)>>;
-            const std::string line = fixture_line("x", c.ray, c.prim);
-            *key = line.substr(2, line.find(' ', line.find(' ', 2) + 1) - 2) + "-" + c.construction;
-            for (char& ch : *key)
-                if (ch == ' ') ch = '-';
-            (void)sizeof(T);
-        }
-        if (r.violations.empty()) return;
-        ok = false;
-        ++run.findings;
-        std::printf("# %s: %s input %s\n%s", harness_name(h), c.construction.c_str(), hex(bytes).c_str(), to_string(r.violations).c_str());
-        std::printf("fuzz.%s.%s %s\n", harness_name(h), c.construction.c_str(),
-                    fixture_line("", c.ray, c.prim).substr(1).c_str());
-        std::fflush(stdout);
-    });
-    return ok;
+    const InputCheck c = check_input(h, bytes, run.options);
+    ++run.cases;
+    run.hits += std::size_t(c.checked.hits);
+    if (key) {  // the fixture line's primitive and type words
+        const std::size_t from = c.line.find(' ') + 1, to = c.line.find(' ', c.line.find(' ', from) + 1);
+        *key = c.line.substr(from, to - from) + "-" + c.construction;
+        for (char& ch : *key)
+            if (ch == ' ') ch = '-';
+    }
+    if (c.checked.violations.empty()) return true;
+    ++run.findings;
+    std::fputs(finding_text(h, bytes, c).c_str(), stdout);
+    std::fflush(stdout);
+    return false;
 }
 
 }  // namespace
@@ -139,11 +117,7 @@ int main(int argc, char** argv)
     }
 
     std::mt19937_64 rng(seed);
-    const auto random_bytes = [&] {
-        std::vector<std::uint8_t> bytes(rng() % 193);
-        for (auto& b : bytes) b = std::uint8_t(rng());
-        return bytes;
-    };
+    const auto random_bytes = [&] { return random_input(rng); };
 
     if (!seeds_dir.empty()) {
         // One passing input per (primitive, number type, construction), at most 40 per family, from a

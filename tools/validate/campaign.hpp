@@ -31,6 +31,9 @@ struct Settings {
     std::string precision_preset;     // the precision sweeps' own preset name
     double bench_min_time = 0;        // seconds per benchmark (Google Benchmark --benchmark_min_time)
     std::string fixtures_dir;         // curated oracle fixtures measured too ("" = none)
+    std::size_t fuzz_cases = 0;       // generated fuzz inputs per harness
+    std::size_t fuzz_chunk = 0;       // inputs per work item
+    std::string fuzz_corpus_dir;      // stored fuzz inputs replayed too: <dir>/<harness>, <dir>/open/<harness> ("" = none)
 
     static Settings preset_named(const std::string& name);  // throws std::invalid_argument
     json to_json() const;
@@ -61,7 +64,9 @@ struct Campaign {
     std::function<json(const Settings&, const Item&, std::string& csv)> run;
     std::string csv_header;
     // The campaign's summary section from every item's result, in plan order. Must contain
-    // "metrics": a flat object of numbers that gates refer to, and "tables".
+    // "metrics": a flat object of numbers that gates refer to, and "tables"; may contain "notes"
+    // (titled preformatted text for the page) and "skipped_metrics" (metric name prefixes whose
+    // producer did not run, e.g. a benchmark program that is not built: gates on them are skipped).
     std::function<json(const Settings&, const std::vector<json>&)> reduce;
     // Plots drawn from the reduced sections of every campaign that ran (keyed by name; this
     // campaign's own is always there): run time against error needs the oracle's errors.

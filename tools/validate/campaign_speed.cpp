@@ -1,15 +1,27 @@
 // The speed campaign (issue 7): runs the Google Benchmark programs built next to rayq-validate
 // and keeps the median of repetitions per benchmark, with ratios taken inside the same run
 // (timings are never comparable across runs on a shared machine). Not deterministic: shard/merge
-// identity excludes it.
+// identity excludes it. A program that is not built (rayq-bench-embree without Embree 3, all of
+// them without Google Benchmark) shows as skipped, and gates on its metrics are skipped.
+//
+// rayq-bench-embree also answers the oracle campaign's float sphere cases with Embree's native
+// sphere; those answers and rayq's three policies on the same cases are measured against the
+// exact oracle here, so Embree's point on the run-time-against-error plot is measured, not assumed.
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <unistd.h>
+
+#include <rayq/oracle/fixtures.hpp>
+#include <rayq/oracle/harness.hpp>
+#include <rayq/stats/histogram.hpp>
 
 #include "campaign.hpp"
 #include "process.hpp"
@@ -20,15 +32,36 @@ namespace {
 
 struct Program {
     const char* item;
-    const char* binary;  // in the tools build directory (RAYQ_TOOLS_BINARY_DIR), relative
+    const char* binary;        // in the tools build directory (RAYQ_TOOLS_BINARY_DIR), relative
     const char* quick_filter;  // --benchmark_filter under --quick ("" = everything)
     const char* filter;        // otherwise
+    const char* needs;         // what building it takes (the reason shown when it is absent)
+    std::vector<std::string> metrics;  // prefixes of the metrics its results give
+    bool sphere_answers = false;       // also answers the oracle's float sphere cases (Embree)
 };
-const Program programs[] = {
-    {"policies", "rayq-bench", "", ""},
+const std::vector<Program> programs = {
+    {"policies", "rayq-bench", "", "", "Google Benchmark", {"speed.stable_over_fast.", "speed.accurate_over_fast."}},
     // One ray against 16 and 1,024 primitives: scalar loop, compile-time scene, runtime variant.
-    {"scene", "rayq-bench-scene", "sphere/float/fast/(loop|scene)/16$", "/(16|1024)$"},
+    {"scene", "rayq-bench-scene", "sphere/float/fast/(loop|scene)/16$", "/(16|1024)$", "Google Benchmark",
+     {"speed.scene_over_loop.", "speed.variant_over_loop."}},
+    // Embree's native spheres, rayq inside Embree and rayq's compile-time scene on 1 … 100,000
+    // spheres; the scalar loops at N = 1 are the like-for-like reference of the Pareto plot.
+    {"embree", "rayq-bench-embree", "^sphere/(embree_points|rayq_embree_stable|rayq_scene_fast|rayq_loop_(fast|stable|accurate))/",
+     "^sphere/(embree_points|rayq_embree_(stable|accurate)|rayq_scene_(fast|stable|accurate)|rayq_loop_(fast|stable|accurate))/",
+     "Embree 3 (libembree-dev) and Google Benchmark", {"speed.embree."}, true},
 };
+
+const Program& program_named(const std::string& item)
+{
+    for (const Program& p : programs)
+        if (item == p.item) return p;
+    throw std::runtime_error("speed campaign: unknown program " + item);
+}
+
+// Embree's accuracy is measured on the first oracle_cases float sphere cases of the oracle
+// campaign (same generator, same seed), at most this many: the speed campaign runs each program
+// as one work item, and the full preset's 10^6 would keep it busy for an hour.
+constexpr std::size_t max_sphere_answers = 10000;
 
 // Google Benchmark writes NaN and Infinity bare (e.g. the "cv" aggregate of a counter that is 0 in
 // every repetition is 0/0), which strict JSON does not allow: they become null.
@@ -45,21 +78,120 @@ std::string strict_json(std::string text)
 std::vector<Item> plan(const Settings& s)
 {
     std::vector<Item> items;
-    for (const Program& p : programs)
-        items.push_back({p.item, {{"binary", p.binary}, {"filter", s.preset == "quick" ? p.quick_filter : p.filter}}});
+    for (const Program& p : programs) {
+        // "built" is part of the spec so that a resumed run does not reuse a skipped result once
+        // the program has been built.
+        json spec = {{"binary", p.binary}, {"filter", s.preset == "quick" ? p.quick_filter : p.filter},
+                     {"built", std::filesystem::exists(tools_binary(p.binary))}};
+        if (p.sphere_answers) spec["sphere_cases"] = std::min(s.oracle_cases, max_sphere_answers);
+        items.push_back({p.item, spec});
+    }
     return items;
+}
+
+// A case as rayq-bench-embree --answers_in reads it (its write_answers has the format).
+std::string answer_input_line(const oracle::Input<Sphere<float>>& c)
+{
+    std::string line;
+    for (const float v : {c.ray.origin.x, c.ray.origin.y, c.ray.origin.z, c.ray.direction.x, c.ray.direction.y,
+                          c.ray.direction.z, c.ray.tmin, c.ray.tmax, c.prim.center.x, c.prim.center.y, c.prim.center.z,
+                          c.prim.radius}) {
+        char buf[48];
+        std::snprintf(buf, sizeof buf, "%s%a", line.empty() ? "" : " ", double(v));  // %a writes inf as "inf"
+        line += buf;
+    }
+    return line + "\n";
+}
+
+// One answer line ("miss" or "hit t Ng.x Ng.y Ng.z") as the hit record the oracle measures:
+// Embree's geometric normal, normalized and turned to face the ray; it certifies nothing, so
+// t_error and point_error are infinite (never a bound violation, never "bounded").
+std::optional<Hit<float>> embree_hit(const std::string& line, const Ray<float>& ray)
+{
+    std::istringstream words(line);
+    std::string word;
+    words >> word;
+    if (word == "miss") return std::nullopt;
+    float v[4];  // t, Ng (hex floats: istream cannot read them)
+    const bool hit = word == "hit";
+    for (float& x : v) {
+        char* end = nullptr;
+        if (hit && words >> word) x = std::strtof(word.c_str(), &end);
+        if (!end || *end) throw std::runtime_error("rayq-bench-embree: unexpected answer '" + line + "'");
+    }
+    constexpr float inf = std::numeric_limits<float>::infinity();
+    const Vec3<float> ng{v[1], v[2], v[3]};
+    const bool front = dot(ng, ray.direction) < 0;
+    Hit<float> h;
+    h.t = v[0];
+    h.point = ray.origin + ray.direction * h.t;
+    h.normal = normalize(front ? ng : ng * -1.0f);
+    h.front_face = front;
+    h.part = Part::surface;
+    h.t_error = inf;
+    h.point_error = {inf, inf, inf};
+    return h;
+}
+
+// Embree's answers and rayq's three policies on the same cases, against the exact oracle.
+json sphere_accuracy(const std::vector<oracle::Fixture>& cases, const std::vector<std::string>& answers)
+{
+    if (answers.size() != cases.size())
+        throw std::runtime_error("rayq-bench-embree answered " + std::to_string(answers.size()) + " of " +
+                                 std::to_string(cases.size()) + " cases");
+    std::vector<std::pair<std::string, oracle::Tally>> variants = {{"embree_points", {}}};
+    for (oracle::Policy p : oracle::all_policies) variants.push_back({oracle::policy_name(p), {}});
+    for (std::size_t i = 0; i < cases.size(); ++i) {
+        const auto& c = std::get<oracle::Input<Sphere<float>>>(cases[i].input);
+        const oracle::Truth truth = oracle::truth_of(cases[i].input);
+        variants[0].second.add(truth.measure(embree_hit(answers[i], c.ray)));
+        const auto rayq_answers = oracle::measure_all_policies(truth, cases[i].input);
+        for (std::size_t p = 0; p < rayq_answers.size(); ++p) variants[1 + p].second.add(rayq_answers[p]);
+    }
+    json rows = json::array();
+    for (const auto& [variant, t] : variants) {
+        // Quantiles as the oracle campaign reads them (bin upper edges): the Pareto plot puts
+        // these next to its points.
+        stats::LogHistogram ulps;
+        for (double u : t.ulps) ulps.add(u);
+        rows.push_back({{"variant", variant}, {"cases", t.cases}, {"hit_agree_pct", percent(t.hit_agree, t.cases)},
+                        {"both_hit", t.both_hit}, {"front_agree_pct", percent(t.front_agree, t.both_hit)},
+                        {"faithful_pct", percent(t.faithful, t.both_hit)}, {"median_ulp", ulps.quantile(0.5)},
+                        {"p99_ulp", ulps.quantile(0.99)}, {"max_ulp", ulps.max()}});
+    }
+    return rows;
 }
 
 json run(const Settings& s, const Item& item, std::string& csv)
 {
+    const Program& program = program_named(item.id);
     const std::string binary = tools_binary(item.spec.at("binary").get<std::string>());
+    if (!item.spec.at("built").get<bool>())
+        return {{"program", item.id}, {"skipped", binary + " is not built (it needs " + program.needs + ")"}, {"rows", json::array()}};
     const std::filesystem::path out = temporary_path("bench.json");
     char min_time[64];
     std::snprintf(min_time, sizeof min_time, "--benchmark_min_time=%g", s.bench_min_time);
     std::vector<std::string> args = {binary, min_time, "--benchmark_repetitions=5", "--benchmark_report_aggregates_only=true",
                                      "--benchmark_format=json", "--benchmark_out_format=json", "--benchmark_out=" + out.string()};
     if (const std::string filter = item.spec.value("filter", ""); !filter.empty()) args.push_back("--benchmark_filter=" + filter);
+    std::vector<oracle::Fixture> cases;
+    const std::filesystem::path answers_in = temporary_path("answers.in"), answers_out = temporary_path("answers.out");
+    if (item.spec.contains("sphere_cases")) {
+        cases = oracle::generate_cases("sphere", oracle::Scalar::f32, item.spec.at("sphere_cases"), s.seed);
+        std::string text;
+        for (const oracle::Fixture& f : cases) text += answer_input_line(std::get<oracle::Input<Sphere<float>>>(f.input));
+        std::ofstream(answers_in) << text;
+        args.push_back("--answers_in=" + answers_in.string());
+        args.push_back("--answers_out=" + answers_out.string());
+    }
     const int status = run_program(args, /*quiet=*/true);
+    std::vector<std::string> answers;
+    if (!cases.empty()) {
+        std::ifstream answers_file(answers_out);
+        for (std::string line; std::getline(answers_file, line);) answers.push_back(line);
+        std::filesystem::remove(answers_in);
+        std::filesystem::remove(answers_out);
+    }
     if (status != 0) throw std::runtime_error(binary + " exited with status " + std::to_string(status));
     std::ifstream in(out);
     const json j = json::parse(strict_json(std::string(std::istreambuf_iterator<char>(in), {})));
@@ -78,14 +210,83 @@ json run(const Settings& s, const Item& item, std::string& csv)
                b.at("time_unit").get<std::string>() + "\n";
         rows.push_back(row);
     }
-    return {{"program", item.id}, {"context", j.at("context")}, {"rows", rows}};
+    json result = {{"program", item.id}, {"context", j.at("context")}, {"rows", rows}};
+    if (!cases.empty()) result["sphere_accuracy"] = sphere_accuracy(cases, answers);
+    return result;
+}
+
+// rayq-bench-embree names its benchmarks sphere/<variant>/<N>. Its section: M rays/s per variant
+// and N with each rayq variant's speed over Embree's native spheres in the same run (metrics
+// speed.embree.<variant>_over_points.<N>), the accuracy on the oracle's float sphere cases
+// (speed.embree.accuracy.<variant>.<measure>), and the Pareto plot's like-for-like points.
+const char* const embree_variants[] = {"embree_points", "rayq_embree_stable", "rayq_embree_accurate",
+                                       "rayq_scene_fast", "rayq_scene_stable", "rayq_scene_accurate"};
+
+json embree_section(const json& result, json& metrics, json& tables)
+{
+    std::map<int, std::map<std::string, double>> mrays;  // N -> variant -> M rays/s
+    std::map<std::string, double> time_at_1;            // variant -> median time per batch of rays at N = 1
+    for (const json& row : result.at("rows")) {
+        const std::string name = row.at("name");
+        const auto first = name.find('/'), last = name.rfind('/');
+        if (name.compare(0, first, "sphere") != 0 || last == first) continue;
+        const std::string variant = name.substr(first + 1, last - first - 1);
+        const int n = std::atoi(name.c_str() + last + 1);
+        if (const auto rate = row.at("counters").find("rays_per_second"); rate != row.at("counters").end() && rate->is_number())
+            mrays[n][variant] = rate->get<double>() / 1e6;
+        if (n == 1) time_at_1[variant] = row.at("ns");
+    }
+    json speed_rows = json::array();
+    for (const auto& [n, by_variant] : mrays) {
+        json row = {n};
+        const auto points = by_variant.find("embree_points");
+        for (const char* v : embree_variants) {
+            const auto it = by_variant.find(v);
+            row.push_back(it == by_variant.end() ? json(nullptr) : json(it->second));
+            if (it == by_variant.end() || points == by_variant.end() || it == points || points->second <= 0) continue;
+            metrics["speed.embree." + std::string(v) + "_over_points." + std::to_string(n)] = it->second / points->second;
+        }
+        for (const char* v : {"rayq_embree_stable", "rayq_scene_fast"}) {
+            const auto it = by_variant.find(v);
+            row.push_back(it == by_variant.end() || points == by_variant.end() || points->second <= 0 ? json(nullptr)
+                                                                                                   : json(it->second / points->second));
+        }
+        speed_rows.push_back(row);
+    }
+    tables.push_back({{"title", "Embree (rayq-bench-embree): M rays/s, closest hit with hit record, one thread, same run"},
+                      {"columns", {"spheres", "Embree points", "rayq in Embree (stable)", "rayq in Embree (accurate)",
+                                   "Scene (fast)", "Scene (stable)", "Scene (accurate)", "rayq in Embree (stable) / Embree",
+                                   "Scene (fast) / Embree"}},
+                      {"rows", speed_rows}});
+
+    // The accuracy rows; each variant's time at N = 1 relative to rayq fast's scalar loop (Embree's
+    // includes its BVH traversal: the cost of a sphere as a renderer meets it).
+    json accuracy_rows = json::array(), pareto = json::array();
+    const auto fast_loop = time_at_1.find("rayq_loop_fast");
+    for (const json& a : result.value("sphere_accuracy", json::array())) {
+        const std::string variant = a.at("variant");
+        const std::string m = "speed.embree.accuracy." + variant + ".";
+        for (const char* k : {"hit_agree_pct", "p99_ulp", "max_ulp"}) metrics[m + k] = a.at(k);
+        accuracy_rows.push_back({variant == "embree_points" ? "Embree points" : "rayq " + variant, a["cases"], a["hit_agree_pct"],
+                                 a["front_agree_pct"], a["faithful_pct"], a["median_ulp"], a["p99_ulp"], a["max_ulp"]});
+        const auto t = time_at_1.find(variant == "embree_points" ? variant : "rayq_loop_" + variant);
+        if (t != time_at_1.end() && fast_loop != time_at_1.end() && fast_loop->second > 0)
+            pareto.push_back({{"variant", variant}, {"time_over_fast", t->second / fast_loop->second}, {"p99_ulp", a.at("p99_ulp")}});
+    }
+    if (!accuracy_rows.empty())
+        tables.push_back({{"title", "The same float sphere cases against the exact oracle: Embree's native sphere and rayq's "
+                                    "policies (the oracle campaign's first cases, same seed)"},
+                          {"columns", {"variant", "cases", "hit/miss agree %", "front agree %", "faithful %", "median ulp",
+                                       "p99 ulp", "max ulp"}},
+                          {"rows", accuracy_rows}});
+    return {{"sphere_accuracy", result.value("sphere_accuracy", json::array())}, {"pareto", pareto}};
 }
 
 // rayq-bench names its benchmarks intersect/<primitive>/<type>/<policy>; time is per batch of rays,
 // so ratios between policies of the same primitive and type are what we report.
 json reduce(const Settings&, const std::vector<json>& results)
 {
-    json metrics = json::object(), rows = json::array();
+    json metrics = json::object(), rows = json::array(), notes = json::array(), skipped_metrics = json::array();
     std::map<std::string, double> ns;  // run_name -> median
     for (const json& r : results)
         for (const json& row : r.at("rows")) {
@@ -127,10 +328,20 @@ json reduce(const Settings&, const std::vector<json>& results)
         }
         scene_table.push_back(row);
     }
+    json embree_tables = json::array(), embree = nullptr;
+    for (const json& r : results) {
+        const Program& program = program_named(r.at("program"));
+        if (r.contains("skipped")) {
+            for (const std::string& prefix : program.metrics) skipped_metrics.push_back({{"prefix", prefix}, {"reason", r.at("skipped")}});
+            notes.push_back({{"title", std::string(program.binary) + ": skipped"}, {"text", r.at("skipped").get<std::string>() + "\n"}});
+        } else if (program.sphere_answers) {
+            embree = embree_section(r, metrics, embree_tables);
+        }
+    }
     json bench_table = json::array(), ratio_table = json::array();
     for (const json& r : rows) bench_table.push_back({r["name"], r["ns"], r["time_unit"], r["counters"].dump()});
     for (const json& r : ratios) ratio_table.push_back({r["variant"], r["policy"], r["over_fast"]});
-    const json tables = json::array(
+    json tables = json::array(
         {{{"title", "Cost relative to fast (same run)"}, {"columns", {"primitive/type", "policy", "time / fast"}},
           {"rows", ratio_table}},
          {{"title", "One ray against N primitives: speed-up over the scalar loop (same run)"},
@@ -138,43 +349,74 @@ json reduce(const Settings&, const std::vector<json>& results)
           {"rows", scene_table}},
          {{"title", "Benchmarks (median of 5 repetitions)"}, {"columns", {"benchmark", "median time", "unit", "counters"}},
           {"rows", bench_table}}});
-    return {{"metrics", metrics}, {"rows", rows}, {"ratios", ratios}, {"tables", tables}};
+    tables.insert(tables.begin() + 2, embree_tables.begin(), embree_tables.end());
+    return {{"metrics", metrics}, {"rows", rows}, {"ratios", ratios}, {"embree", embree}, {"tables", tables},
+            {"notes", notes}, {"skipped_metrics", skipped_metrics}};
 }
 
-// Run time against error: one point per (policy, type), x = median over primitives of the time
-// per ray relative to fast, y = the oracle's worst p99 ulp error of that policy and type.
+// Run time against error. One point per (policy, type): x = median over primitives of the time per
+// ray relative to fast (rayq-bench), y = the oracle campaign's worst p99 ulp error of that policy
+// and type. And, like for like, float spheres only: Embree's native sphere and rayq's policies on
+// the same cases (rayq-bench-embree: time at N = 1 relative to rayq fast's scalar loop, p99 ulp
+// error against the exact oracle).
 std::vector<Plot> plots(const json& sections)
 {
     const json& speed = sections.at("speed");
     Plot p;
     p.name = "speed_vs_error";
     p.title = "Run time against error: cost relative to fast (same run) vs p99 ulp error from the exact oracle";
-    std::map<std::string, std::vector<double>> cost;  // "policy/type" -> ratios over primitives
-    for (const json& r : speed.at("ratios")) {
-        const std::string variant = r.at("variant");
-        const std::string type = variant.substr(variant.find('/') + 1);
-        cost[r.at("policy").get<std::string>() + "/" + type].push_back(r.at("over_fast"));
-    }
-    for (const char* type : {"float", "double"}) cost[std::string("fast/") + type].push_back(1.0);
-    if (!sections.contains("oracle")) return {};
-    std::map<std::string, double> p99;  // worst over primitives
-    for (const json& row : sections.at("oracle").at("rows")) {
-        const std::string k = row.at("policy").get<std::string>() + "/" + row.at("type").get<std::string>();
-        p99[k] = std::max(p99[k], row.at("p99_ulp").get<double>());
-    }
     std::string data;
-    for (auto& [k, v] : cost) {
-        if (!p99.count(k)) continue;
-        std::sort(v.begin(), v.end());
-        char line[128];
-        std::snprintf(line, sizeof line, "%.6g %.6g \"%s\"\n", v[v.size() / 2], std::max(p99[k], 1e-3), k.c_str());
-        data += line;
+    if (sections.contains("oracle")) {
+        std::map<std::string, std::vector<double>> cost;  // "policy/type" -> ratios over primitives
+        for (const json& r : speed.at("ratios")) {
+            const std::string variant = r.at("variant");
+            const std::string type = variant.substr(variant.find('/') + 1);
+            cost[r.at("policy").get<std::string>() + "/" + type].push_back(r.at("over_fast"));
+        }
+        for (const char* type : {"float", "double"}) cost[std::string("fast/") + type].push_back(1.0);
+        std::map<std::string, double> p99;  // worst over primitives
+        for (const json& row : sections.at("oracle").at("rows")) {
+            const std::string k = row.at("policy").get<std::string>() + "/" + row.at("type").get<std::string>();
+            p99[k] = std::max(p99[k], row.at("p99_ulp").get<double>());
+        }
+        for (auto& [k, v] : cost) {
+            if (!p99.count(k)) continue;
+            std::sort(v.begin(), v.end());
+            char line[128];
+            std::snprintf(line, sizeof line, "%.6g %.6g \"%s\"\n", v[v.size() / 2], std::max(p99[k], 1e-3), k.c_str());
+            data += line;
+        }
     }
-    p.data.emplace_back("speed_vs_error.dat", data);
-    p.script = "set logscale y\nset xlabel 'time per ray relative to fast (median over primitives)'\n"
-               "set ylabel 'worst p99 ulp error of t'\nset grid\nset offsets 0.3, 0.6, 0, 0\n"
-               "plot '<dir>/speed_vs_error.dat' using 1:2 with points pt 7 ps 1.5 notitle, "
-               "'' using 1:2:3 with labels offset 0,1 notitle\n";
+    // The like-for-like points each get a key entry rather than a label: they lie close together.
+    std::string spheres, sphere_plots;
+    if (speed.at("embree").is_object()) {
+        const int point_types[] = {6, 4, 8, 12};  // open circle, square, triangle, diamond
+        int k = 0;
+        for (const json& q : speed.at("embree").at("pareto")) {
+            const std::string variant = q.at("variant");
+            char line[128];
+            std::snprintf(line, sizeof line, "%.6g %.6g\n", q.at("time_over_fast").get<double>(), std::max(q.at("p99_ulp").get<double>(), 1e-3));
+            spheres += line;
+            sphere_plots += ", '<dir>/speed_vs_error_spheres.dat' every ::" + std::to_string(k) + "::" + std::to_string(k) +
+                            " using 1:2 with points ps 1.5 lt " + std::to_string(2 + k) + " pt " + std::to_string(point_types[k % 4]) + " title '" +
+                            (variant == "embree_points" ? "Embree" : variant) + ", float spheres'";
+            ++k;
+        }
+    }
+    if (data.empty() && spheres.empty()) return {};
+    p.script = "set logscale y\nset xlabel 'time per ray relative to fast (rayq: median over primitives; "
+               "float spheres: at N = 1, over the fast scalar loop)'\nset ylabel 'p99 ulp error of t'\nset grid\n"
+               "set offsets 0.3, 0.6, 0, 0\nset key outside right top\nplot ";
+    if (!data.empty()) {
+        p.data.emplace_back("speed_vs_error.dat", data);
+        p.script += "'<dir>/speed_vs_error.dat' using 1:2 with points pt 7 ps 1.5 lt 1 title 'rayq: worst over primitives', "
+                    "'' using 1:2:3 with labels offset 0,1 notitle";
+    }
+    if (!spheres.empty()) {
+        p.data.emplace_back("speed_vs_error_spheres.dat", spheres);
+        p.script += data.empty() ? sphere_plots.substr(2) : sphere_plots;
+    }
+    p.script += "\n";
     return {p};
 }
 

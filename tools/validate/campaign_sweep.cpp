@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <optional>
 #include <set>
 #include <stdexcept>
 
@@ -183,8 +184,54 @@ json reduce(const Settings&, const std::vector<json>& results)
     return {{"metrics", metrics}, {"rows", rows}, {"tables", tables}};
 }
 
+// The misclassification band: the fraction of cases per decade whose hit/miss differs from the
+// exact oracle's, against δ toward tangency, one line per policy, with the logistic fit's δ50 and
+// δ99 (where P(correct) falls to 50% and 99%) in the key.
+std::optional<Plot> misclassification_plot(const json& rows, const std::string& primitive, const std::string& type)
+{
+    Plot p;
+    p.name = "sweep_band_" + primitive + "_" + type;
+    p.title = "Misclassification band: wrong hit/miss against δ toward tangency, " + primitive + ", " + type;
+    std::string plot;
+    double highest = 0;
+    int colour = 1;
+    for (const json& r : rows) {
+        if (r.at("primitive") != primitive || r.at("type") != type || r.at("kind") != "closeness" || r.at("family") == "rim") continue;
+        std::string data;
+        for (const json& q : r.at("points")) {
+            const std::size_t cases = q.at("cases"), correct = q.at("hit_correct");
+            if (cases == 0) continue;
+            const double wrong = double(cases - correct) / double(cases);
+            highest = std::max(highest, wrong);
+            char line[64];
+            std::snprintf(line, sizeof line, "%.6g %.6g\n", q.at("x").get<double>(), wrong);
+            data += line;
+        }
+        if (data.empty()) continue;
+        const std::string policy = r.at("policy");
+        const std::string file = p.name + "_" + policy + ".dat";
+        p.data.emplace_back(file, data);
+        const json& fit = r.at("fit");
+        std::string title = policy;
+        if (fit.at("always_correct").get<bool>()) title += " (never wrong)";
+        else if (!fit.at("x50").is_null() || !fit.at("x99").is_null())
+            title += " (logistic fit: δ50 = " + (fit.at("x50").is_null() ? std::string("n/a") : text(fit.at("x50").get<double>(), 2)) +
+                     ", δ99 = " + (fit.at("x99").is_null() ? std::string("n/a") : text(fit.at("x99").get<double>(), 2)) + ")";
+        plot += std::string(plot.empty() ? "" : ", ") + "'<dir>/" + file + "' using 1:2 with linespoints pt 7 lw 2 lt " +
+                std::to_string(colour++) + " title '" + title + "'";
+    }
+    if (plot.empty()) return std::nullopt;
+    char range[64];
+    std::snprintf(range, sizeof range, "set yrange [0:%.3g]\n", std::max(0.05, 1.1 * highest));  // all zero: still a visible axis
+    p.script = "set logscale x\nset format x '10^{%L}'\nset xlabel 'δ (relative distance to tangency / |d·n|)'\n"
+               "set ylabel 'fraction misclassified (hit/miss)'\nset key top left\nset grid\nset xrange [*:*] reverse\n" +
+               std::string(range) + "plot " + plot + "\n";
+    return p;
+}
+
 // Median ulp error against δ toward tangency with the fitted curves, per primitive shown and
-// number type: the sphere (the theory's case) and the plane (a flat primitive's 1/(d·n)).
+// number type: the sphere (the theory's case) and the plane (a flat primitive's 1/(d·n)); then
+// the misclassification band of each.
 std::vector<Plot> plots(const json& sections)
 {
     std::vector<Plot> out;
@@ -229,6 +276,9 @@ std::vector<Plot> plots(const json& sections)
             out.push_back(p);
         }
     }
+    for (const char* primitive : {"sphere", "plane"})
+        for (const char* type : {"double", "float"})
+            if (auto p = misclassification_plot(rows, primitive, type)) out.push_back(*p);
     return out;
 }
 

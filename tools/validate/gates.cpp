@@ -91,7 +91,15 @@ json evaluate_gates(const std::vector<Gate>& gates, const json& campaigns, const
                 values.push_back({{"metric", name}, {"value", value}, {"pass", pass}});
             }
             r["values"] = values;
-            if (values.empty()) {
+            // A gate on the metrics of a part that did not run (e.g. a benchmark program that is not
+            // built) is skipped like a campaign that did not run; matching nothing otherwise fails.
+            std::string skipped_because;
+            for (const json& part : c->at("section").value("skipped_metrics", json::array()))
+                if (g.pattern.rfind(part.at("prefix").get<std::string>(), 0) == 0) skipped_because = part.at("reason");
+            if (values.empty() && !skipped_because.empty()) {
+                r["status"] = "skipped";
+                r["reason"] = skipped_because;
+            } else if (values.empty()) {
                 r["status"] = "fail";
                 r["reason"] = "no metric matches";
             } else {

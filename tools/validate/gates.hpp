@@ -4,8 +4,10 @@
 //   <metric pattern>  <op>  <threshold>      op: <= < >= > ==
 //
 // A pattern may contain '*' (any run of characters, dots included); every metric it matches must
-// pass. A gate whose campaign did not run (skipped, incomplete) is "skipped", never "pass"; a gate
-// whose campaign ran but which matches no metric fails (it would otherwise measure nothing).
+// pass. A gate whose campaign did not run (skipped, incomplete) is "skipped", never "pass"; so is
+// a gate that matches no metric and names a part of a campaign that did not run (the section's
+// "skipped_metrics" prefixes, e.g. rayq-bench-embree not built). A gate whose campaign ran but
+// which matches no metric otherwise fails (it would measure nothing).
 #pragma once
 
 #include <string>

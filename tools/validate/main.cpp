@@ -34,9 +34,12 @@ const char* usage =
     "  --oracle-cases N      generated oracle cases per primitive and number type\n"
     "  --primitive P         oracle campaign on these primitives only (repeatable; default all)\n"
     "  --mesh-rays N --mesh-max-n N   mesh cross-check size\n"
+    "  --fuzz-cases N        generated fuzz inputs per harness\n"
     "  --bench-min-time S    seconds per benchmark repetition\n"
     "  --fixtures DIR        curated oracle fixture files measured too (default: the checked-in ones)\n"
-    "  --no-fixtures         measure generated cases only\n"
+    "  --fuzz-corpus DIR     stored fuzz inputs replayed too: DIR/<harness>, DIR/open/<harness>\n"
+    "                        (default: the checked-in fixtures/fuzz)\n"
+    "  --no-fixtures         generated cases only: no curated oracle fixtures, no stored fuzz inputs\n"
     "  --out DIR             output directory (default rayq-report)\n"
     "  --gates FILE          gates file (default: the checked-in tools/validate/gates.txt)\n"
     "  --fresh               do not reuse finished work items from an interrupted run in DIR\n"
@@ -116,7 +119,7 @@ int main_throwing(int argc, char** argv)
 {
     const auto start = std::chrono::steady_clock::now();
     std::string preset = "default", gates_file = RAYQ_DEFAULT_GATES, out = "rayq-report";
-    std::string fixtures = RAYQ_DEFAULT_FIXTURES;
+    std::string fixtures = RAYQ_DEFAULT_FIXTURES, fuzz_corpus = RAYQ_DEFAULT_FUZZ_CORPUS;
     std::set<std::string> only, skip;
     std::vector<std::string> primitives;
     std::vector<std::pair<std::string, std::string>> overrides;
@@ -138,12 +141,14 @@ int main_throwing(int argc, char** argv)
         else if (a == "--out") out = need(i, argc, argv);
         else if (a == "--gates") gates_file = need(i, argc, argv);
         else if (a == "--fixtures") fixtures = need(i, argc, argv);
-        else if (a == "--no-fixtures") fixtures.clear();
+        else if (a == "--fuzz-corpus") fuzz_corpus = need(i, argc, argv);
+        else if (a == "--no-fixtures") { fixtures.clear(); fuzz_corpus.clear(); }
         else if (a == "--fresh") fresh = true;
         else if (a == "--only") only.insert(need(i, argc, argv));
         else if (a == "--primitive") primitives.push_back(need(i, argc, argv));
         else if (a == "--skip") skip.insert(need(i, argc, argv));
-        else if (a == "--seed" || a == "--oracle-cases" || a == "--mesh-rays" || a == "--mesh-max-n" || a == "--bench-min-time")
+        else if (a == "--seed" || a == "--oracle-cases" || a == "--mesh-rays" || a == "--mesh-max-n" || a == "--bench-min-time" ||
+                 a == "--fuzz-cases")
             overrides.emplace_back(a, need(i, argc, argv));
         else if (a == "--shard") {
             const std::string v = need(i, argc, argv);
@@ -200,6 +205,9 @@ int main_throwing(int argc, char** argv)
         throw UsageError(e.what());
     }
     o.settings.fixtures_dir = fixtures;
+    if (!fuzz_corpus.empty() && !std::filesystem::is_directory(fuzz_corpus))
+        throw UsageError("--fuzz-corpus: '" + fuzz_corpus + "' is not a readable directory");
+    o.settings.fuzz_corpus_dir = fuzz_corpus;
     for (const auto& p : primitives)
         if (std::find(rayq::oracle::generated_primitives().begin(), rayq::oracle::generated_primitives().end(), p) ==
             rayq::oracle::generated_primitives().end())
@@ -222,6 +230,10 @@ int main_throwing(int argc, char** argv)
         }
         else if (k == "--mesh-rays") o.settings.mesh_rays = static_cast<int>(number(k, v));
         else if (k == "--mesh-max-n") o.settings.mesh_max_n = static_cast<int>(number(k, v));
+        else if (k == "--fuzz-cases") {
+            o.settings.fuzz_cases = number(k, v);
+            o.settings.fuzz_chunk = std::max<std::size_t>(1, std::min<std::size_t>(o.settings.fuzz_chunk, o.settings.fuzz_cases));
+        }
         else {
             char* end = nullptr;
             o.settings.bench_min_time = std::strtod(v.c_str(), &end);

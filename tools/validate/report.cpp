@@ -95,6 +95,7 @@ th { background: #f0f0f0; } td:first-child, th:first-child { text-align: left; }
 .scroll { max-height: 480px; overflow: auto; display: inline-block; }
 .plot { margin: 1em 0; } .plot svg { max-width: 100%; height: auto; border: 1px solid #ddd; }
 code, pre { background: #f6f6f6; padding: 2px 4px; }
+pre.note { max-height: 480px; overflow: auto; }
 )";
 
 // After load: count the plots that rendered with a non-empty box; the headless-browser test
@@ -167,6 +168,9 @@ int write_report(const json& summary, const std::filesystem::path& out)
                 ++plots;
             }
         for (const json& t : entry.at("section").value("tables", json::array())) body += table_html(t);
+        for (const json& n : entry.at("section").value("notes", json::array()))
+            body += "<h3>" + escape(n.at("title").get<std::string>()) + "</h3>\n<pre class=\"note\">" +
+                    escape(n.at("text").get<std::string>()) + "</pre>\n";
     }
 
     const json& run = summary.value("run", json::object());

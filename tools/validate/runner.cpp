@@ -13,6 +13,7 @@ namespace rayq::report {
 Campaign oracle_campaign();
 Campaign mesh_campaign();
 Campaign speed_campaign();
+Campaign fuzz_campaign();
 #ifdef RAYQ_VALIDATE_SWEEP
 Campaign sweep_campaign();  // campaign_sweep.cpp, built when rayq::sweep (Ceres) is
 #endif
@@ -23,6 +24,7 @@ const std::vector<Campaign>& all_campaigns()
 #ifdef RAYQ_VALIDATE_SWEEP
                                                      , sweep_campaign()
 #endif
+                                                     , fuzz_campaign()
     };
     return campaigns;
 }
@@ -40,13 +42,13 @@ Settings Settings::preset_named(const std::string& name)
     s.preset = name;
     if (name == "quick") {  // about a minute on 2 cores
         s.oracle_cases = 1000; s.oracle_chunk = 1000; s.oracle_csv_cases = 1000; s.mesh_rays = 400; s.mesh_max_n = 32;
-        s.precision_preset = "quick"; s.bench_min_time = 0.01;
+        s.precision_preset = "quick"; s.bench_min_time = 0.01; s.fuzz_cases = 5000; s.fuzz_chunk = 5000;
     } else if (name == "default") {  // under 10 minutes on 2 cores
         s.oracle_cases = 10000; s.oracle_chunk = 2500; s.oracle_csv_cases = 10000; s.mesh_rays = 3000; s.mesh_max_n = 128;
-        s.precision_preset = "default"; s.bench_min_time = 0.1;
+        s.precision_preset = "default"; s.bench_min_time = 0.1; s.fuzz_cases = 100000; s.fuzz_chunk = 25000;
     } else if (name == "full") {  // the big campaign: 10^6 cases per primitive and type
         s.oracle_cases = 1000000; s.oracle_chunk = 20000; s.oracle_csv_cases = 10000; s.mesh_rays = 20000; s.mesh_max_n = 512;
-        s.precision_preset = "full"; s.bench_min_time = 0.5;
+        s.precision_preset = "full"; s.bench_min_time = 0.5; s.fuzz_cases = 10000000; s.fuzz_chunk = 200000;
     } else {
         throw std::invalid_argument("unknown preset '" + name + "' (expected quick, default or full)");
     }
@@ -58,7 +60,8 @@ json Settings::to_json() const
     return {{"preset", preset}, {"seed", seed}, {"oracle_cases", oracle_cases}, {"oracle_chunk", oracle_chunk},
             {"oracle_csv_cases", oracle_csv_cases}, {"oracle_primitives", oracle_primitives},
             {"mesh_rays", mesh_rays}, {"mesh_max_n", mesh_max_n}, {"precision_preset", precision_preset},
-            {"bench_min_time", bench_min_time}, {"fixtures_dir", fixtures_dir}};
+            {"bench_min_time", bench_min_time}, {"fixtures_dir", fixtures_dir}, {"fuzz_cases", fuzz_cases},
+            {"fuzz_chunk", fuzz_chunk}, {"fuzz_corpus_dir", fuzz_corpus_dir}};
 }
 
 Settings Settings::from_json(const json& j)
@@ -69,6 +72,7 @@ Settings Settings::from_json(const json& j)
     s.oracle_primitives = j.at("oracle_primitives").get<std::vector<std::string>>(); s.mesh_rays = j.at("mesh_rays"); s.mesh_max_n = j.at("mesh_max_n");
     s.precision_preset = j.at("precision_preset"); s.bench_min_time = j.at("bench_min_time");
     s.fixtures_dir = j.at("fixtures_dir");
+    s.fuzz_cases = j.at("fuzz_cases"); s.fuzz_chunk = j.at("fuzz_chunk"); s.fuzz_corpus_dir = j.at("fuzz_corpus_dir");
     return s;
 }
 
@@ -206,7 +210,7 @@ json run_shard(const RunOptions& o)
     }
     json selected = json::array();
     for (const auto& s : o.selected) selected.push_back(s);
-    json partial = {{"schema", "rayq-validate-partial"}, {"version", 1}, {"settings", settings},
+    json partial = {{"schema", "rayq-validate-partial"}, {"version", format_version}, {"settings", settings},
                     {"selected", selected}, {"shard", {{"index", o.shard}, {"count", o.shards}}},
                     {"campaigns", campaigns}};
     write_file_atomically(o.out / "partial.json", partial.dump());
@@ -217,8 +221,9 @@ Partial read_partial(const std::filesystem::path& dir)
 {
     const auto file = dir / "partial.json";
     Partial p{read_json(file), dir};
-    if (p.summary.value("schema", "") != "rayq-validate-partial" || p.summary.value("version", 0) != 1)
-        throw std::runtime_error(file.string() + ": not a rayq-validate partial summary (schema rayq-validate-partial, version 1 expected)");
+    if (p.summary.value("schema", "") != "rayq-validate-partial" || p.summary.value("version", 0) != format_version)
+        throw std::runtime_error(file.string() + ": not a rayq-validate partial summary (schema rayq-validate-partial, version " +
+                                 std::to_string(format_version) + " expected: shards made by another version are rerun, not merged)");
     for (const char* key : {"settings", "selected", "shard", "campaigns"})
         if (!p.summary.contains(key)) throw std::runtime_error(file.string() + ": expected a \"" + key + "\" field");
     return p;
@@ -283,7 +288,7 @@ json merge(const std::vector<Partial>& partials, const std::filesystem::path& ou
     }
     json shards = json::array();
     for (const Partial& p : partials) shards.push_back(p.summary.at("shard"));
-    return {{"schema", "rayq-validate-summary"}, {"version", 1}, {"settings", settings_json},
+    return {{"schema", "rayq-validate-summary"}, {"version", format_version}, {"settings", settings_json},
             {"campaigns", campaigns}, {"shards", shards}};
 }
 

@@ -11,6 +11,10 @@
 
 namespace rayq::report {
 
+// The version of partial.json and summary.json (summary.schema.json): bumped when a field's
+// meaning changes or settings gain a field, so results of another version are never merged.
+constexpr int format_version = 2;
+
 struct RunOptions {
     Settings settings;
     std::set<std::string> selected;  // campaign names to run; the others are reported as skipped

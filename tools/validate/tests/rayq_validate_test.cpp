@@ -1,6 +1,6 @@
 // rayq-validate end to end (issue 8): the --quick report, its schema, gates and the exit status,
-// shard/merge identity, resume, bad input, and the page in headless Chromium. Runs the real
-// program; nothing is mocked.
+// shard/merge identity, resume, bad input, the fuzz campaign, Embree in the speed campaign (or its
+// absence), and the page in headless Chromium. Runs the real program; nothing is mocked.
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -96,6 +96,7 @@ json results_of(json summary)
 }
 
 const std::string small = "--only oracle --only mesh --oracle-cases 120 --mesh-rays 120 --mesh-max-n 16 --seed 5";
+const char* const harnesses[] = {"flat", "sphere", "axial", "quadric", "transformed"};
 
 class RayqValidate : public ::testing::Test {
 protected:
@@ -170,12 +171,13 @@ TEST_F(RayqValidate, GatesDecideTheExitStatusAndSkippedNeverPasses)
 
 TEST_F(RayqValidate, FourShardsMergedEqualOneRun)
 {
-    Result one = run(small + " --out " + (work / "one").string());
+    const std::string sharded = small + " --only fuzz --fuzz-cases 40";  // the fuzz campaign shards too
+    Result one = run(sharded + " --out " + (work / "one").string());
     ASSERT_TRUE(one.status == 0 || one.status == 1) << one.output;
     std::string dirs;
     for (int i = 0; i < 4; ++i) {
         const fs::path d = work / ("shard" + std::to_string(i));
-        Result r = run(small + " --shard " + std::to_string(i) + "/4 --out " + d.string());
+        Result r = run(sharded + " --shard " + std::to_string(i) + "/4 --out " + d.string());
         ASSERT_EQ(r.status, 0) << r.output;
         EXPECT_FALSE(fs::exists(d / "summary.json")) << "a shard writes partial results only";
         dirs += " " + d.string();
@@ -186,6 +188,8 @@ TEST_F(RayqValidate, FourShardsMergedEqualOneRun)
     const json b = results_of(read_json(work / "merged" / "summary.json"));
     EXPECT_EQ(a, b) << "one run and four merged shards differ";
     EXPECT_EQ(read_text(work / "one" / "data" / "oracle.csv"), read_text(work / "merged" / "data" / "oracle.csv"));
+    EXPECT_EQ(read_text(work / "one" / "data" / "fuzz.csv"), read_text(work / "merged" / "data" / "fuzz.csv"));
+    EXPECT_EQ(a["campaigns"]["fuzz"]["status"], "ran");
 
     // Three of four shards: the campaigns are incomplete and their gates skipped, never passed.
     run("merge --out " + (work / "three").string() + " " + (work / "shard0").string() + " " +
@@ -252,6 +256,102 @@ TEST_F(RayqValidate, BadInputGetsAClearMessageAndExitStatus2)
 
     r = run("--shard 4/4 --out " + (work / "x").string());
     EXPECT_EQ(r.status, 2) << r.output;
+}
+
+TEST_F(RayqValidate, TheFuzzCampaignReportsEveryHarnessAndIsGated)
+{
+    const fs::path out = work / "quick";
+    ASSERT_TRUE(fs::exists(out / "summary.json")) << quick_->output;
+    const json summary = read_json(out / "summary.json");
+    const json& fuzz = summary["campaigns"]["fuzz"];
+    ASSERT_EQ(fuzz["status"], "ran");
+    const json& metrics = fuzz["section"]["metrics"];
+    for (const char* h : harnesses) {
+        const std::string m = std::string("fuzz.") + h + ".";
+        for (const char* k : {"cases", "findings", "known_open", "accurate_skipped"})
+            EXPECT_TRUE(metrics.contains(m + k)) << m + k;
+        // the preset's generated cases plus the stored corpus
+        EXPECT_GT(metrics.value(m + "cases", 0), summary["settings"]["fuzz_cases"].get<int>()) << h;
+    }
+    bool gated = false;
+    for (const json& g : summary["gates"]["results"])
+        if (g["metric"] == "fuzz.*.findings") {
+            gated = true;
+            EXPECT_NE(g["status"], "skipped");
+            EXPECT_EQ(g["values"].size(), 5u);
+        }
+    EXPECT_TRUE(gated) << "gates.txt gates fuzz.*.findings";
+    const std::string html = read_text(out / "index.html");
+    for (const char* h : harnesses) EXPECT_NE(html.find(std::string("Harness ") + h + " ("), std::string::npos) << h;
+    EXPECT_NE(html.find("First findings"), std::string::npos);
+    // Every finding shown is a ready-to-paste fixture line after its comments.
+    const std::string notes = fuzz["section"]["notes"][0]["text"];
+    std::istringstream lines(notes);
+    for (std::string line; std::getline(lines, line);) {
+        if (!line.empty() && line[0] != '#' && line.rfind("None", 0) != 0) {
+            EXPECT_EQ(line.rfind("fuzz.", 0), 0u) << line;
+        }
+    }
+}
+
+TEST_F(RayqValidate, ASkippedFuzzCampaignShowsAsSkipped)
+{
+    std::ofstream(work / "fuzz_gate.txt") << "fuzz.*.findings == 0\n";
+    const fs::path out = work / "nofuzz";
+    const Result r = run("--only mesh --mesh-rays 20 --mesh-max-n 8 --out " + out.string() + " --gates " + (work / "fuzz_gate.txt").string());
+    EXPECT_EQ(r.status, 0) << "a skipped gate neither passes nor fails the run: " << r.output;
+    const json s = read_json(out / "summary.json");
+    EXPECT_EQ(s["campaigns"]["fuzz"]["status"], "skipped");
+    EXPECT_FALSE(s["campaigns"]["fuzz"].contains("section"));
+    EXPECT_EQ(s["gates"]["results"][0]["status"], "skipped");
+    EXPECT_EQ(s["gates"]["passed"], 0);
+    const std::string html = read_text(out / "index.html");
+    EXPECT_NE(html.find("<h2 id=\"fuzz\">"), std::string::npos);
+    EXPECT_NE(html.find("skipped</small>", html.find("<h2 id=\"fuzz\">")), std::string::npos);
+}
+
+// Embree in the speed campaign: measured against the exact oracle when rayq-bench-embree is built;
+// otherwise its part shows as skipped and gates on it are skipped, never passed.
+TEST_F(RayqValidate, EmbreeIsMeasuredOrShownAsSkipped)
+{
+    const json summary = read_json(work / "quick" / "summary.json");
+    const json& speed = summary["campaigns"]["speed"]["section"];
+    const std::string html = read_text(work / "quick" / "index.html");
+    bool embree_skipped = false;
+    for (const json& part : speed.value("skipped_metrics", json::array())) embree_skipped |= part["prefix"] == "speed.embree.";
+    if (embree_skipped) {
+        EXPECT_NE(html.find("rayq-bench-embree: skipped"), std::string::npos);
+    } else {
+        for (const char* k : {"embree_points", "fast", "stable", "accurate"})
+            EXPECT_TRUE(speed["metrics"].contains(std::string("speed.embree.accuracy.") + k + ".p99_ulp")) << k;
+        EXPECT_TRUE(speed["metrics"].contains("speed.embree.rayq_embree_stable_over_points.100000"));
+        EXPECT_NE(html.find("Embree (rayq-bench-embree): M rays/s"), std::string::npos);
+        EXPECT_EQ(speed["embree"]["pareto"].size(), 4u) << "Embree and rayq's policies on the Pareto plot";
+    }
+
+    // No benchmark program at all (RAYQ_TOOLS_DIR names an empty directory): the speed campaign
+    // still runs, every program shows as skipped, and a gate on Embree's metrics is skipped.
+    fs::create_directories(work / "no_tools");
+    std::ofstream(work / "embree_gate.txt") << "speed.embree.rayq_embree_stable_over_points.* >= 0.7\n";
+    const fs::path out = work / "no_embree";
+    const std::string command = "RAYQ_TOOLS_DIR=" + (work / "no_tools").string() + " " + program + " --quick --only speed --out " +
+                                out.string() + " --gates " + (work / "embree_gate.txt").string() + " 2>&1";
+    ASSERT_EQ(std::system(command.c_str()), 0);
+    const json s = read_json(out / "summary.json");
+    EXPECT_EQ(s["campaigns"]["speed"]["status"], "ran");
+    EXPECT_EQ(s["gates"]["results"][0]["status"], "skipped");
+    EXPECT_NE(s["gates"]["results"][0]["reason"].get<std::string>().find("rayq-bench-embree is not built"), std::string::npos);
+    EXPECT_NE(read_text(out / "index.html").find("rayq-bench-embree: skipped"), std::string::npos);
+}
+
+TEST_F(RayqValidate, TheSweepCampaignPlotsTheMisclassificationBand)
+{
+    const json summary = read_json(work / "quick" / "summary.json");
+    if (!summary["campaigns"].contains("sweep")) GTEST_SKIP() << "built without the sweep campaign (Ceres)";
+    const std::string html = read_text(work / "quick" / "index.html");
+    for (const char* type : {"double", "float"})
+        EXPECT_NE(html.find(std::string("Misclassification band: wrong hit/miss against δ toward tangency, sphere, ") + type),
+                  std::string::npos) << type;
 }
 
 TEST_F(RayqValidate, ThePageRendersEveryPlotInHeadlessChromium)
