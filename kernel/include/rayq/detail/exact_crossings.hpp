@@ -272,9 +272,12 @@ inline Crossings<scalar_t<Prim>> exact_curved_crossings(const Ray<scalar_t<Prim>
     });
     const T direction = std::max({std::abs(ray.direction.x), std::abs(ray.direction.y), std::abs(ray.direction.z)});
     constexpr T lo = T(0x1p-64), hi = T(0x1p64);  // 2^±64: twelve factors stay within double's and float's (as double) range
-    if ((length == T(0) || (length >= lo && length <= hi)) && direction >= lo && direction <= hi)
-        return exact_curved_crossings_unscaled(ray, prim, axial, capped, ends, limit);
-    const int kl = length == T(0) || !std::isfinite(length) ? 0 : std::ilogb(length), kd = std::ilogb(direction);
+    const bool in_range = (length == T(0) || (length >= lo && length <= hi)) && direction >= lo && direction <= hi;
+    // A zero, infinite or NaN magnitude (a degenerate ray mapped into a Transformed's object
+    // space) has no unit to change.
+    const bool scalable = std::isfinite(length) && direction > T(0) && std::isfinite(direction);
+    if (in_range || !scalable) return exact_curved_crossings_unscaled(ray, prim, axial, capped, ends, limit);
+    const int kl = length == T(0) ? 0 : std::ilogb(length), kd = std::ilogb(direction);
     Ray<T> r = ray;
     bool exact = true;
     const auto length_unit = [&](auto& x) {
