@@ -30,7 +30,7 @@ namespace detail {
 // The components of the exact fallback's expansions. An expansion is exact only while no product
 // under- or overflows; float inputs are exact in double, whose exponent range keeps products of
 // up to eight float factors in range (float's own did not: a cone near 2^-30 underflowed and a
-// root was rounded 2 ulps off, fixtures/fuzz/axial/crash-ascending-*).
+// root was rounded 2 ulps off; kernel test AccurateRegression.TinyFloatConeMissIsExact).
 template <class T> struct ExactComponent { using type = T; };
 template <> struct ExactComponent<float> { using type = double; };
 
