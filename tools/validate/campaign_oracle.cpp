@@ -94,9 +94,8 @@ void measure_case(const oracle::Fixture& f, std::map<Key, Cell>& cells, std::str
                   exact.hit ? 1 : 0, exact.hit ? exact.t_long : 0.0L);
     csv += buf;
     for (Policy p : oracle::all_policies) {
-        const auto before = rayq::exact_fallbacks.load(std::memory_order_relaxed);
         const oracle::KernelAnswer a = oracle::run_kernel(p, f.input);
-        const bool fell_back = rayq::exact_fallbacks.load(std::memory_order_relaxed) != before;
+        const bool fell_back = a.exact_fallback;
         const oracle::Measurement m = a.is_float ? truth.measure(a.f) : truth.measure(a.d);
         const double t_error = a.is_float ? t_error_of(a.f) : t_error_of(a.d);
         Cell& c = cells[Key{primitive, oracle::policy_name(p), type, cls}];

@@ -3,7 +3,9 @@
 
 namespace rayq::oracle {
 
-KernelAnswer run_kernel(Policy p, const AnyInput& input)
+namespace {
+
+KernelAnswer dispatch(Policy p, const AnyInput& input)
 {
     switch (p) {
     case Policy::fast: return harness::run_fast(input);
@@ -12,10 +14,22 @@ KernelAnswer run_kernel(Policy p, const AnyInput& input)
     }
 }
 
+}  // namespace
+
+KernelAnswer run_kernel(Policy p, const AnyInput& input)
+{
+    const auto before = rayq::exact_fallbacks.load(std::memory_order_relaxed);
+    KernelAnswer a = dispatch(p, input);
+    a.exact_fallback = rayq::exact_fallbacks.load(std::memory_order_relaxed) != before;
+    return a;
+}
+
 Measurement measure_kernel(const Truth& truth, Policy p, const AnyInput& input)
 {
     const KernelAnswer a = run_kernel(p, input);
-    return a.is_float ? truth.measure(a.f) : truth.measure(a.d);
+    Measurement m = a.is_float ? truth.measure(a.f) : truth.measure(a.d);
+    m.exact_fallback = a.exact_fallback;
+    return m;
 }
 
 std::array<Measurement, 3> measure_all_policies(const Truth& truth, const AnyInput& input)

@@ -12,6 +12,7 @@ void Tally::add(const Measurement& m)
     if (!m.defined) return;
     ++cases;
     if (m.hit_agrees) ++hit_agree;
+    if (m.exact_fallback) ++exact_fallbacks;
     if (m.kernel_hit) {
         if (m.bounded) ++bounded;
         if (m.bound_violated) ++bound_violations;
@@ -62,9 +63,9 @@ std::string fmt_ulps(double u)
 std::string table_header()
 {
     char buf[256];
-    std::snprintf(buf, sizeof buf, "%-20s %-8s %-6s %-10s %6s %8s %8s %8s %9s %9s %9s %12s %6s %6s %9s", "primitive",
+    std::snprintf(buf, sizeof buf, "%-20s %-8s %-6s %-10s %6s %8s %8s %8s %9s %9s %9s %12s %6s %6s %9s %9s", "primitive",
                   "policy", "type", "family", "cases", "hit%", "part%", "front%", "max ulp", "p99 ulp", "faithful%",
-                  "bound viol", "uncert", "other", "max angle");
+                  "bound viol", "uncert", "other", "max angle", "fallback%");
     return buf;
 }
 
@@ -74,28 +75,29 @@ std::string table_line(const SummaryRow& r)
     char viol[32];
     std::snprintf(viol, sizeof viol, "%zu/%zu", t.bound_violations, t.bounded);
     char buf[320];
-    std::snprintf(buf, sizeof buf, "%-20s %-8s %-6s %-10s %6zu %8.3f %8.3f %8.3f %9s %9s %9.2f %12s %6zu %6zu %9.2e",
+    std::snprintf(buf, sizeof buf, "%-20s %-8s %-6s %-10s %6zu %8.3f %8.3f %8.3f %9s %9s %9.2f %12s %6zu %6zu %9.2e %9.4f",
                   r.primitive.c_str(), r.policy.c_str(), r.type.c_str(), r.family.c_str(), t.cases,
                   pct(t.hit_agree, t.cases), pct(t.part_agree, t.both_hit), pct(t.front_agree, t.both_hit),
                   fmt_ulps(t.max_ulps()).c_str(), fmt_ulps(t.percentile_ulps(99)).c_str(), pct(t.faithful, t.both_hit),
-                  viol, t.uncertified, t.other_crossing, t.max_angle);
+                  viol, t.uncertified, t.other_crossing, t.max_angle, pct(t.exact_fallbacks, t.cases));
     return buf;
 }
 
 std::string csv_header()
 {
     return "primitive,policy,type,family,cases,hit_agree_pct,both_hit,part_agree_pct,front_agree_pct,max_ulp,p99_ulp,"
-           "faithful_pct,bounded,bound_violations,uncertified,other_crossing,max_normal_angle";
+           "faithful_pct,bounded,bound_violations,uncertified,other_crossing,max_normal_angle,exact_fallback_pct";
 }
 
 std::string csv_line(const SummaryRow& r)
 {
     const Tally& t = r.tally;
     char buf[512];
-    std::snprintf(buf, sizeof buf, "%s,%s,%s,%s,%zu,%.4f,%zu,%.4f,%.4f,%.6g,%.6g,%.4f,%zu,%zu,%zu,%zu,%.6g", r.primitive.c_str(),
+    std::snprintf(buf, sizeof buf, "%s,%s,%s,%s,%zu,%.4f,%zu,%.4f,%.4f,%.6g,%.6g,%.4f,%zu,%zu,%zu,%zu,%.6g,%.6g", r.primitive.c_str(),
                   r.policy.c_str(), r.type.c_str(), r.family.c_str(), t.cases, pct(t.hit_agree, t.cases), t.both_hit,
                   pct(t.part_agree, t.both_hit), pct(t.front_agree, t.both_hit), t.max_ulps(), t.percentile_ulps(99),
-                  pct(t.faithful, t.both_hit), t.bounded, t.bound_violations, t.uncertified, t.other_crossing, t.max_angle);
+                  pct(t.faithful, t.both_hit), t.bounded, t.bound_violations, t.uncertified, t.other_crossing, t.max_angle,
+                  pct(t.exact_fallbacks, t.cases));
     return buf;
 }
 

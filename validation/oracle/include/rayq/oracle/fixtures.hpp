@@ -92,6 +92,7 @@ struct Tally {
     std::size_t bound_violations = 0; // kernel hits whose bound misses the exact first hit (false hits: every crossing)
     std::size_t uncertified = 0;      // violations with no exact crossing of the line within the bound
     std::size_t other_crossing = 0;   // among both_hit: the kernel reported a different crossing
+    std::size_t exact_fallbacks = 0;  // cases whose kernel call needed exact arithmetic (accurate)
     double max_angle = 0;             // radians, over both_hit with a defined normal
     std::vector<double> ulps;         // among both_hit
 

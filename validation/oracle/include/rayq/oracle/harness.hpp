@@ -20,6 +20,7 @@ struct KernelAnswer {
     bool is_float = false;
     std::optional<Hit<float>> f;
     std::optional<Hit<double>> d;
+    bool exact_fallback = false;  // the call needed the accurate policy's exact arithmetic (rayq::exact_fallbacks moved)
 
     bool hit() const { return is_float ? f.has_value() : d.has_value(); }
 };

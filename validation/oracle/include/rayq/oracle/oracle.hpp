@@ -97,6 +97,7 @@ struct Measurement {
                                   // missed a root near tmin)
     double normal_angle = 0;      // radians between the kernel's normal and the exact facing normal
                                   // (either orientation when exactly tangent); NaN when undefined
+    bool exact_fallback = false;  // the kernel call needed exact arithmetic (set by measure_kernel)
 };
 
 // Everything the oracle knows about one (ray, primitive) pair, computed once; measure() then
