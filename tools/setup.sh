@@ -14,7 +14,7 @@ packages=(
   libembree-dev                      # adapters/embree: rayq primitives in Embree's BVH (issue 7)
   gnuplot-nox                        # the report's plots (SVG)
   chromium                           # the report's headless-browser test
-  clang-14 libclang-rt-14-dev        # sanitizer build and libFuzzer harnesses (validation/fuzz)
+  clang-14 libclang-rt-14-dev        # sanitizer build and libFuzzer harnesses (tools/sanitize)
 )
 
 missing=()

@@ -38,6 +38,11 @@ std::vector<Gate> parse_gates(const std::string& text, const std::string& file)
         }
         if (used != threshold.size() || !std::isfinite(g.threshold)) fail("a finite number, got '" + threshold + "'");
         if (words >> extra) fail("end of line after the threshold, got '" + extra + "'");
+        // Printable ASCII only: the pattern is written into summary.json, and a byte that is not
+        // UTF-8 made writing it throw after the whole run (found by the parsers' fuzz harness,
+        // fixtures/fuzz/parsers/crash-gates-invalid-utf8-pattern).
+        for (const char ch : g.pattern)
+            if (ch < '!' || ch > '~') fail("a metric pattern of printable ASCII characters (letters, digits, '.', '_', '*', ...)");
         if (g.pattern.find('.') == std::string::npos) fail("a metric of the form <campaign>.<name>, got '" + g.pattern + "'");
         gates.push_back(g);
     }

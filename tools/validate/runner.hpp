@@ -8,12 +8,9 @@
 #include <vector>
 
 #include "campaign.hpp"
+#include "partial.hpp"
 
 namespace rayq::report {
-
-// The version of partial.json and summary.json (summary.schema.json): bumped when a field's
-// meaning changes or settings gain a field, so results of another version are never merged.
-constexpr int format_version = 2;
 
 struct RunOptions {
     Settings settings;
@@ -30,13 +27,9 @@ json run_shard(const RunOptions& options);
 // Combines partial summaries (each with the directory it was written in, for the raw CSV) into
 // the summary: every campaign's section reduced from the union of item results. Throws
 // std::runtime_error when the partials disagree on settings or on an item's result.
-struct Partial {
-    json summary;
-    std::filesystem::path dir;
-};
 json merge(const std::vector<Partial>& partials, const std::filesystem::path& out);
 
-// Reads <dir>/partial.json with a clear error naming the file.
+// Reads <dir>/partial.json (parse_partial) with a clear error naming the file.
 Partial read_partial(const std::filesystem::path& dir);
 
 // Writes text to path through a temporary file and a rename: never a half-written file.

@@ -5,7 +5,7 @@
 // libFuzzer: every policy, float and double, scalar and scene paths, t_error against the binary128
 // reference. In the g++ build (RAYQ_EDGE_CASE_ORACLE) every 50th valid case of the primitives the
 // accurate policy decides exactly is also measured against the exact oracle: hit/miss, part, and
-// t within 1 ulp. The sanitizer build (validation/fuzz/CMakeLists.txt) runs it without the oracle.
+// t within 1 ulp. The sanitizer build (tools/sanitize/CMakeLists.txt) runs it without the oracle.
 //
 // RAYQ_EDGE_CASES=N sets the byte strings per family (default 20,000: a few seconds in all with
 // g++ -O2; the sanitizer build runs 4,000); the replay

@@ -1,6 +1,6 @@
 # Issue 9, included by validation/tests/CMakeLists.txt: the deterministic edge-case generator and
 # the replay of fixtures/fuzz/ (edge_case_test.cpp), with the exact oracle sampled. The libFuzzer
-# harnesses and the sanitizer build are a project of their own: validation/fuzz/CMakeLists.txt.
+# harnesses and the sanitizer build are a project of their own: tools/sanitize/CMakeLists.txt.
 if(TARGET rayq::oracle_harness)
   find_package(GTest REQUIRED)
   include(GoogleTest)

@@ -252,7 +252,23 @@ TEST_F(RayqValidate, BadInputGetsAClearMessageAndExitStatus2)
     std::ofstream(work / "not_a_shard" / "partial.json") << "{\"schema\": \"something-else\"}";
     r = run("merge --out " + (work / "x").string() + " " + (work / "not_a_shard").string());
     EXPECT_EQ(r.status, 2);
-    EXPECT_NE(r.output.find("not a rayq-validate partial summary"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("partial.json: expected a rayq-validate partial summary"), std::string::npos) << r.output;
+
+    // A partial of the right schema whose fields do not hold what merge reads: named, not a crash.
+    const fs::path quick = work / "quick";
+    ASSERT_TRUE(fs::exists(quick / "partial.json"));
+    json mistyped = read_json(quick / "partial.json");
+    mistyped["settings"]["seed"] = -1;
+    std::ofstream(work / "not_a_shard" / "partial.json") << mistyped.dump();
+    r = run("merge --out " + (work / "x").string() + " " + (work / "not_a_shard").string());
+    EXPECT_EQ(r.status, 2);
+    EXPECT_NE(r.output.find("partial.json: expected settings.seed to be a count (a non-negative integer), got -1"), std::string::npos) << r.output;
+    mistyped = read_json(quick / "partial.json");
+    mistyped["campaigns"].erase("oracle");
+    std::ofstream(work / "not_a_shard" / "partial.json") << mistyped.dump();
+    r = run("merge --out " + (work / "x").string() + " " + (work / "not_a_shard").string());
+    EXPECT_EQ(r.status, 2);
+    EXPECT_NE(r.output.find("partial.json: expected a \"oracle\" field in campaigns"), std::string::npos) << r.output;
 
     r = run("--shard 4/4 --out " + (work / "x").string());
     EXPECT_EQ(r.status, 2) << r.output;

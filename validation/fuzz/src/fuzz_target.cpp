@@ -1,7 +1,7 @@
 // One libFuzzer harness per primitive family (RAYQ_FUZZ_HARNESS = flat, sphere, axial, quadric,
 // transformed): decode the bytes into a (ray, primitive) pair (decoder.hpp), check every invariant
 // under every policy (invariants.hpp), and crash on a violation so that libFuzzer keeps the input.
-// Built only with clang's -fsanitize=fuzzer (validation/fuzz/CMakeLists.txt), together with ASan
+// Built only with clang's -fsanitize=fuzzer (tools/sanitize/CMakeLists.txt), together with ASan
 // and UBSan: a sanitizer report is a finding too.
 #include <cstdint>
 #include <cstdio>

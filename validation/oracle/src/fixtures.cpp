@@ -247,11 +247,6 @@ Scalar scalar_of(const AnyInput& input) { return input.index() < kinds ? Scalar:
 const char* scalar_name(Scalar s) { return s == Scalar::f32 ? "float" : "double"; }
 std::string family_class(const std::string& family) { return family.substr(0, family.find('.')); }
 
-Truth truth_of(const AnyInput& input)
-{
-    return std::visit([](const auto& in) { return Truth(in.ray, in.prim); }, input);
-}
-
 std::vector<Fixture> parse_fixtures(std::istream& in, const std::string& file_name)
 {
     std::vector<Fixture> out;

@@ -1,10 +1,13 @@
 // rayq::oracle — the exact hit record and the measurement of a kernel answer against it.
 #include "truth.hpp"
 
+#include <rayq/oracle/fixtures.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <variant>
 
 #include "convert.hpp"
 #include "numeric.hpp"
@@ -178,6 +181,13 @@ Measurement measure_impl(const Truth::Impl& impl, const std::optional<Hit<T>>& k
 }
 
 }  // namespace
+
+// Here, not in fixtures.cpp: the text format's parser then links without the exact arithmetic
+// (the parser fuzz harness builds it alone, tools/fuzz/parsers_fuzz_target.cpp).
+Truth truth_of(const AnyInput& input)
+{
+    return std::visit([](const auto& in) { return Truth(in.ray, in.prim); }, input);
+}
 
 Truth::Truth(Truth&&) noexcept = default;
 Truth& Truth::operator=(Truth&&) noexcept = default;
