@@ -87,10 +87,11 @@ void gates(const std::string& text)
         check_line_error(e.what(), file, text);
         return;
     }
+    const std::size_t lines = lines_in(text);
     for (const rayq::report::Gate& g : parsed) {
         if (g.op != "<=" && g.op != "<" && g.op != ">=" && g.op != ">" && g.op != "==") finding("accepted operator " + g.op, text);
         if (!(g.threshold == g.threshold) || g.threshold - g.threshold != 0) finding("accepted a non-finite threshold", text);
-        if (g.line < 1 || std::size_t(g.line) > lines_in(text)) finding("a gate on a line the input does not have", text);
+        if (g.line < 1 || std::size_t(g.line) > lines) finding("a gate on a line the input does not have", text);
     }
     // Evaluating them against a small summary exercises the pattern matching on fuzzed patterns.
     const rayq::report::json campaigns = {

@@ -199,11 +199,8 @@ json run_shard(const RunOptions& o)
 Partial read_partial(const std::filesystem::path& dir)
 {
     const auto file = dir / "partial.json";
-    std::ifstream in(file, std::ios::binary);
-    if (!in) throw std::runtime_error(file.string() + ": cannot open");
-    std::ostringstream text;
-    text << in.rdbuf();
-    return {parse_partial(text.str(), file.string()), dir};
+    if (!std::ifstream(file)) throw std::runtime_error(file.string() + ": cannot open");
+    return {parse_partial(read_text(file), file.string()), dir};
 }
 
 // ---- merge --------------------------------------------------------------------------------------
