@@ -3,6 +3,7 @@
 // PLY keep floats, OBJ keeps 17 decimals in fixed notation (then float), OM keeps doubles.
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -53,15 +54,15 @@ std::vector<std::array<int, 3>> faces(const TriMesh& m)
     return out;
 }
 
-// What OpenMesh 9's OBJ writer and reader make of a float value: it is printed in fixed notation with
-// 17 decimals (so values below ~1e-8 lose significant digits, and below 5e-18 become 0) and parsed
-// back as a float.
+// What OpenMesh 9's OBJ writer and read_mesh make of a value: it is rounded to float, printed in
+// fixed notation with 17 decimals (so values below ~1e-8 lose significant digits, and below 5e-18
+// become 0) and parsed back as a double.
 double through_obj(double x)
 {
     char text[64];
-    std::snprintf(text, sizeof text, "%.17f", x);
-    volatile float f = std::strtof(text, nullptr);  // volatile: see to_float() in io.cpp (g++ 12 SLP bug)
-    return f;
+    volatile float f = static_cast<float>(x);  // volatile: see to_float() in io.cpp (g++ 12 SLP bug)
+    std::snprintf(text, sizeof text, "%.17f", static_cast<double>(f));
+    return std::strtod(text, nullptr);
 }
 
 // Bitwise equality of points, vertex normals (when compared) and faces; `obj`: a as it comes back
@@ -116,9 +117,10 @@ TEST(MeshIO, FixturesRoundTripExactlyThroughEveryTextFormat)
             ASSERT_TRUE(read_mesh(back, path, &has_normals));
             EXPECT_TRUE(has_normals);
             // An OBJ fixture read back and written as OBJ again is identical; other formats written as
-            // OBJ lose digits of coordinates below ~1e-8 (fixed notation), exactly as modelled.
-            const bool obj = std::string(ext) == ".obj";
-            expect_identical(original, back, true, obj);
+            // OBJ lose digits of coordinates below ~1e-8 (fixed notation), exactly as modelled. OFF
+            // and PLY hold the float rounding of what the OBJ reader read as doubles; OM all of it.
+            const bool obj = std::string(ext) == ".obj", om = std::string(ext) == ".om";
+            expect_identical(obj || om ? original : rounded_to_float(original), back, true, obj);
             if (obj && std::string(f.file).find(".obj") != std::string::npos) expect_identical(original, back, true);
             std::remove(path.c_str());
         }
@@ -152,10 +154,120 @@ TEST(MeshIO, TextFormatsKeepFloatPrecisionAndOmKeepsDouble)
     std::remove(path.c_str());
 }
 
+// rayq's OFF/OBJ/PLY readers and OpenMesh's agree on the fixtures, up to OpenMesh's rounding to float
+// (the fixtures hold floats, so the OFF and PLY ones agree bit for bit).
+TEST(MeshIO, ReadsWhatOpenMeshReads)
+{
+    for (const Fixture& f : fixtures) {
+        SCOPED_TRACE(f.file);
+        const std::string path = std::string(RAYQ_MESH_FIXTURES) + "/" + f.file;
+        TriMesh ours, theirs;
+        ASSERT_TRUE(read_mesh(ours, path));
+        OpenMesh::IO::Options opt = OpenMesh::IO::Options::VertexNormal;
+        ASSERT_TRUE(OpenMesh::IO::read_mesh(theirs, path, opt));
+        const bool obj = std::string(f.file).find(".obj") != std::string::npos;
+        expect_identical(obj ? rounded_to_float(ours) : ours, theirs, true);
+    }
+}
+
 TEST(MeshIO, ReadFailsCleanly)
 {
     TriMesh m;
-    EXPECT_FALSE(read_mesh(m, temp("does_not_exist.off")));
+    std::string error;
+    EXPECT_FALSE(read_mesh(m, temp("does_not_exist.off"), nullptr, &error));
+    EXPECT_EQ(error, temp("does_not_exist.off") + ": cannot open the file");
+    EXPECT_FALSE(read_mesh(m, std::string(RAYQ_MESH_FIXTURES) + "/README.md", nullptr, &error));
+    EXPECT_NE(error.find("README.md: expected a file named .off, .obj, .ply or .om"), std::string::npos) << error;
+}
+
+// A malformed file: false, an empty mesh, and "file:line: expected …".
+TEST(MeshIO, MalformedTextFilesNameTheLine)
+{
+    struct Bad {
+        const char* name;
+        const char* text;
+        int line;
+        const char* expected;
+    };
+    const Bad cases[] = {
+        {"bad_header.off", "# a comment\nOFX\n", 2, "expected OFF or NOFF, got 'OFX'"},
+        {"short.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n", 4, "expected a point (3 numbers) for vertex 2, got the end of the file"},
+        {"nan.off", "OFF 3 1 0\n0 0 0\n1 nan 0\n0 1 0\n3 0 1 2\n", 3, "expected y as a finite number, got 'nan'"},
+        {"index.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n", 6, "expected vertex indices below the 3 points, got 3"},
+        {"trailing.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n3 0 1 2\n", 7, "expected the end of the file after 1 faces"},
+        {"repeat.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 2\n", 4, "expected a face's vertices to be distinct, got 1 twice"},
+        {"zero.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n", 4, "expected a vertex index (1-based, or negative from the end), got '0'"},
+        {"words.obj", "v 0 0 0\nv 1 0 0\nline 1 2\n", 3, "expected v, vn, f (or vt, vp, o, g, s, usemtl, mtllib, #), got 'line'"},
+        {"normals.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvn 0 0 1\nvn 0 0 -1\nf 1//1 2//1 3//1\nf 2//2 4//2 3//2\n", 8,
+         "expected one normal per vertex"},
+        {"binary.ply", "ply\nformat ascii 2.0\n", 2, "expected format ascii 1.0"},
+        {"nox.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float y\nproperty float z\nend_header\n0 0\n", 6,
+         "expected a scalar vertex property x in the header"},
+        {"list.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                     "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n4 0 1 2\n", 13,
+         "expected 4 list items, got 3"},
+        // Three triangles on edge 0–1, the third along 0→1 again: OpenMesh refuses it; read_mesh says so.
+        {"fan.off", "OFF\n5 3 0\n0 0 0\n1 0 0\n0 1 0\n0 -1 0\n0 0 1\n3 0 1 2\n3 1 0 3\n3 0 1 4\n", 10,
+         "expected a face that keeps the mesh a consistently oriented 2-manifold"},
+        {"empty.obj", "", 0, nullptr},  // no faces, no points: an empty mesh, not an error
+    };
+    for (const Bad& c : cases) {
+        SCOPED_TRACE(c.name);
+        const std::string path = temp(c.name);
+        {
+            std::ofstream out(path, std::ios::binary);
+            out << c.text;
+        }
+        TriMesh m;
+        std::string error;
+        const bool ok = read_mesh(m, path, nullptr, &error);
+        std::remove(path.c_str());
+        if (!c.expected) {
+            EXPECT_TRUE(ok) << error;
+            continue;
+        }
+        EXPECT_FALSE(ok);
+        EXPECT_EQ(m.n_vertices(), 0u);
+        const std::string prefix = path + ":" + std::to_string(c.line) + ": " + c.expected;
+        EXPECT_EQ(error.compare(0, prefix.size(), prefix), 0) << error;
+    }
+}
+
+// What the formats allow beyond what OpenMesh writes: OFF counts on the keyword's line and face
+// colours, OBJ polygons (split into triangles), negative indices and texture corners, PLY comments,
+// extra properties and elements, CRLF line ends; coordinates keep double precision.
+TEST(MeshIO, ReadsTheFormatsFreedoms)
+{
+    struct Good {
+        const char* name;
+        const char* text;
+        std::size_t faces;
+        bool normals;
+    };
+    const Good cases[] = {
+        {"colours.off", "OFF 4 2 0\r\n0.1 0 0\r\n1 0 0\r\n1 1 0\r\n0 1 0\r\n3 0 1 2 255 0 0\r\n3 0 2 3 1 0 0 1\r\n", 2, false},
+        {"quad.obj", "o quad\nv 0.1 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvn 0 0 1\ns off\nf -4/1/1 -3/1/1 -2/1/1 -1/1/1\n", 2, true},
+        {"extra.ply", "ply\nformat ascii 1.0\ncomment made by hand\nelement vertex 3\nproperty double x\nproperty double y\n"
+                      "property double z\nproperty uchar red\nelement face 1\nproperty list uchar int vertex_index\n"
+                      "element edge 1\nproperty int vertex1\nproperty int vertex2\nend_header\n"
+                      "0.1 0 0 7\n1 0 0 7\n0 1 0 7\n3 0 1 2\n0 1\n", 1, false},
+    };
+    for (const Good& c : cases) {
+        SCOPED_TRACE(c.name);
+        const std::string path = temp(c.name);
+        {
+            std::ofstream out(path, std::ios::binary);
+            out << c.text;
+        }
+        TriMesh m;
+        std::string error;
+        bool has_normals = false;
+        ASSERT_TRUE(read_mesh(m, path, &has_normals, &error)) << error;
+        std::remove(path.c_str());
+        EXPECT_EQ(m.n_faces(), c.faces);
+        EXPECT_EQ(has_normals, c.normals);
+        EXPECT_EQ(m.point(m.vertex_handle(0))[0], 0.1) << "read as a double, not rounded to float";
+    }
 }
 
 }  // namespace
