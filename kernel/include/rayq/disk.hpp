@@ -66,8 +66,9 @@ inline detail::Residual<N> residual(const Disk<T>& p, const Vec3<N>& o, const Ve
 // Accurate: exact decisions, correctly rounded t. Inside: |o + t·d − c|² − r² <= 0 at the
 // plane's root, evaluated exactly (detail/exact_crossings.hpp).
 template <class T>
-inline Crossings<T> crossings(accurate_policy, const Ray<T>& ray, const Disk<T>& disk)
+inline Crossings<T> crossings(accurate_policy, const Ray<T>& ray, const Disk<T>& disk_in)
 {
+    const Disk<T> disk{disk_in.center, detail::direction_near_unit(disk_in.normal), disk_in.radius};
     const auto rim = [&](auto zero) {
         using N = decltype(zero);
         const Vec3<N> q = detail::lift<N>(ray.origin) - detail::lift<N>(disk.center), d = detail::lift<N>(ray.direction);

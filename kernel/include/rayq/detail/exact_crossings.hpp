@@ -249,6 +249,22 @@ inline bool scale_exactly(T& x, int k)
     return true;
 }
 
+// A normal (or any direction whose length does not matter) scaled by a power of two so that its
+// largest component is near 1, when it is far from 1 and the scaling is exact: the exact inside
+// tests square it (a disk's rim at the plane's root has |n|² in every term), and a component of
+// 2^511 made those products overflow (found by the fuzz harnesses' stream invariant: a disk hit
+// 8e9 away from its center). Homogeneous in n, so every decision is unchanged.
+template <class T>
+inline Vec3<T> direction_near_unit(const Vec3<T>& n)
+{
+    const T largest = std::max({std::abs(n.x), std::abs(n.y), std::abs(n.z)});
+    if (!(largest > T(0)) || !std::isfinite(largest) || (largest >= T(0x1p-64) && largest <= T(0x1p64))) return n;
+    const int k = std::ilogb(largest);
+    Vec3<T> scaled = n;
+    const bool exact = scale_exactly(scaled.x, -k) && scale_exactly(scaled.y, -k) && scale_exactly(scaled.z, -k);
+    return exact ? scaled : n;
+}
+
 // The same, with the inputs' units changed first when their magnitudes are far from 1. Expansions
 // are exact only while no product (up to about twelve factors: a discriminant compared with a cap's
 // t) under- or overflows, and distances of 2^200 in double made them overflow (and the root search
