@@ -5,8 +5,10 @@
 //     if (auto h = rayq::intersect(rayq::fast, ray, scene)) ... h->hit, h->type, h->index
 //     bool blocked = rayq::occluded(rayq::fast, ray, scene);
 //
-// Each listed primitive type is stored in its own arrays (spheres also as structure of arrays
-// for the SIMD filter of batch/sphere.hpp); a type not listed is never instantiated. Closest hit
+// Each listed primitive type is stored in its own arrays, and bounded ones also as structure of
+// arrays for a SIMD culling filter (spheres: batch/sphere.hpp; disks, parallelograms, triangles,
+// and cylinders and cones under `accurate`: their bounding spheres, batch/bounding_sphere.hpp); a
+// type not listed is never instantiated. Closest hit
 // searches with the cheap core only (crossing t, no hit record) and builds one record, for the
 // winner, at the end; nearest() stops before that. Any-hit (occluded) returns at the first hit.
 //
@@ -24,6 +26,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "batch/bounding_sphere.hpp"
 #include "batch/sphere.hpp"
 #include "detail/ulp.hpp"
 #include "query.hpp"
@@ -55,10 +58,11 @@ struct NoBatch {
 template <class Prim>
 struct SceneStore {
     using T = scalar_t<Prim>;
-    static constexpr bool batched = is_sphere<Prim>::value;
+    static constexpr bool sphere = is_sphere<Prim>::value;
+    static constexpr bool bounded = !sphere && batch::has_bounding_sphere_v<Prim>;
     std::vector<Prim> items;
     std::vector<unsigned char> valid;
-    std::conditional_t<batched, batch::SphereSoA<T>, NoBatch> soa;
+    std::conditional_t<sphere, batch::SphereSoA<T>, std::conditional_t<bounded, batch::BoundSoA<T>, NoBatch>> soa;
 
     void add(const Prim& p)
     {
@@ -68,17 +72,20 @@ struct SceneStore {
     }
 
     // Calls visit(i) for every primitive the ray may hit in its window, in index order, until
-    // visit returns true. Spheres: the SIMD filter skips lanes the ray certainly misses; the
-    // window is re-read per lane group, so a nearer hit narrows what the filter keeps.
-    template <class Visit>
+    // visit returns true. Bounded types: the SIMD filter skips lanes the ray certainly misses;
+    // for spheres the window is re-read per lane group, so a nearer hit narrows what it keeps.
+    template <class Policy, class Visit>
     bool scan(const Ray<T>& ray, Visit visit) const
     {
-        if constexpr (batched) {
-            const batch::SphereFilterRay<T> f(ray);
+        if constexpr (sphere || batch::bound_filter_exact_v<Policy, Prim>) {
+            using Filter = std::conditional_t<sphere, batch::SphereFilterRay<T>, batch::BoundFilterRay<T>>;
+            const Filter f(ray);
             for (std::size_t g = 0; g < soa.groups(); ++g) {
-                std::uint32_t m = batch::sphere_candidates(f, ray.tmin, ray.tmax, soa, g);
+                std::uint32_t m = 0;
+                if constexpr (sphere) m = batch::sphere_candidates(f, ray.tmin, ray.tmax, soa, g);
+                else m = batch::bound_candidates(f, soa, g);
                 for (; m != 0; m &= m - 1) {
-                    const std::size_t i = g * batch::SphereSoA<T>::width + static_cast<std::size_t>(lowest_bit(m));
+                    const std::size_t i = g * decltype(soa)::width + static_cast<std::size_t>(lowest_bit(m));
                     if (valid[i] && visit(i)) return true;
                 }
             }
@@ -97,7 +104,7 @@ struct SceneStore {
     bool closest(Policy policy, Ray<T>& ray, std::optional<T>& best, std::size_t& index) const
     {
         bool found = false;
-        scan(ray, [&](std::size_t i) {
+        scan<Policy>(ray, [&](std::size_t i) {
             const std::optional<T> t = first_t_in_window(policy, ray, items[i]);
             if (t && (!best || *t < *best)) {
                 best = t;
@@ -113,15 +120,9 @@ struct SceneStore {
     template <class Policy>
     bool any(Policy policy, const Ray<T>& ray) const
     {
-        return scan(ray, [&](std::size_t i) { return first_t_in_window(policy, ray, items[i]).has_value(); });
+        return scan<Policy>(ray, [&](std::size_t i) { return first_t_in_window(policy, ray, items[i]).has_value(); });
     }
 
-    static int lowest_bit(std::uint32_t m)
-    {
-        int i = 0;
-        while (!(m & 1u)) m >>= 1, ++i;
-        return i;
-    }
 };
 
 template <class T, class... Prims>

@@ -56,4 +56,12 @@ struct Lanes {
 
 #endif
 
+// Index of the lowest set bit of a nonzero lane mask.
+inline int lowest_bit(std::uint32_t m)
+{
+    int i = 0;
+    while (!(m & 1u)) m >>= 1, ++i;
+    return i;
+}
+
 }  // namespace rayq::detail

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include <rayq/rayq.hpp>
+#include <rayq/batch/bounding_sphere.hpp>
 #include <rayq/scene.hpp>
 
 #include "fixture_line.hpp"
@@ -45,7 +46,7 @@ struct Checked {
 };
 
 struct Options {
-    unsigned scene_copies = 1;  // spheres: how many copies the scene check holds (>= 1)
+    unsigned scene_copies = 1;  // bounded primitives: copies in the scene and stream checks (>= 1)
     bool skip_known = !strict_mode();        // leave out known open violations (known_issues.hpp)
     bool skip_known_hangs = !strict_mode();  // do not run accurate where it is known to hang
 };
@@ -213,11 +214,6 @@ void check_t_error(const Ray<T>& ray, const Prim& prim, const Hit<T>& h, const c
                                                                num(to_double(ref.root)) + "); " + describe(h)});
 }
 
-template <class Prim>
-struct is_sphere_prim : std::false_type {};
-template <class T>
-struct is_sphere_prim<Sphere<T>> : std::true_type {};
-
 template <class Policy, class Prim>
 void check_policy(Policy policy, const char* name, const Ray<scalar_t<Prim>>& ray, const Prim& prim, bool may_hit,
                   unsigned scene_copies, Checked& out)
@@ -257,10 +253,10 @@ void check_policy(Policy policy, const char* name, const Ray<scalar_t<Prim>>& ra
                                                                  describe(*hit)});
     }
 
-    // The scene path (spheres: the SIMD filter, with several copies so that lanes and tails are
-    // exercised; the first copy must win) answers exactly what the scalar path does.
+    // The scene path (bounded primitives: a SIMD filter, with several copies so that lanes and
+    // tails are exercised; the first copy must win) answers exactly what the scalar path does.
     Scene<Prim> scene;
-    for (unsigned i = 0; i < (is_sphere_prim<Prim>::value ? scene_copies : 1u); ++i) scene.add(prim);
+    for (unsigned i = 0; i < (batch::has_bounding_sphere_v<Prim> ? scene_copies : 1u); ++i) scene.add(prim);
     const auto scene_hit = intersect(policy, ray, scene);
     if (scene_hit.has_value() != hit.has_value())
         v.push_back({"scene.agrees", p + ": scene " + (scene_hit ? "hit" : "missed") + " but scalar intersect " + (hit ? "hit" : "missed")});
@@ -270,6 +266,27 @@ void check_policy(Policy policy, const char* name, const Ray<scalar_t<Prim>>& ra
     const bool scene_occ = occluded(policy, ray, scene);
     if (scene_occ != occ)
         v.push_back({"scene.occluded_agrees", p + ": scene occluded = " + (scene_occ ? "true" : "false") + ", scalar " + (occ ? "true" : "false")});
+
+    // The stream path (many rays against one primitive: the bounding-sphere filter in SIMD
+    // lanes over copies of the ray, the last copy in a partial lane group): every copy's answer
+    // is the scalar one.
+    if constexpr (batch::has_bounding_sphere_v<Prim>) {
+        batch::RayStream<T> stream;
+        for (unsigned i = 0; i < scene_copies; ++i) stream.push_back(ray);
+        std::vector<std::optional<Hit<T>>> stream_hits;
+        std::vector<unsigned char> stream_occ;
+        batch::intersect(policy, stream, prim, stream_hits);
+        batch::occluded(policy, stream, prim, stream_occ);
+        for (unsigned i = 0; i < scene_copies; ++i) {
+            if (stream_hits[i].has_value() != hit.has_value() || (hit && !same(*stream_hits[i], *hit)) || bool(stream_occ[i]) != occ) {
+                v.push_back({"stream.agrees", p + ": ray " + std::to_string(i) + " of a stream " +
+                                                  (stream_hits[i] ? "hit " + describe(*stream_hits[i]) : std::string("missed")) +
+                                                  ", occluded " + (stream_occ[i] ? "true" : "false") + "; scalar " +
+                                                  (hit ? "hit " + describe(*hit) : std::string("missed"))});
+                break;
+            }
+        }
+    }
 
     if (hit) check_t_error(ray, prim, *hit, name, out);
 }

@@ -1,0 +1,359 @@
+// rayq — the batch paths of every bounded primitive: a conservative SIMD filter on bounding
+// spheres, in both batch patterns, then the scalar intersector on the lanes it keeps.
+//
+//   * one ray against many primitives stored as structure of arrays (the BVH-leaf pattern):
+//     BoundSoA + bound_candidates (scene.hpp uses it for disks, parallelograms, triangles,
+//     cylinders and cones; spheres have their own, tighter filter in batch/sphere.hpp);
+//   * many rays against one primitive (the stream/packet pattern): RayStream + ray_candidates, and
+//     batch::intersect / batch::occluded over a span of rays.
+//
+// As with the sphere filter, the answers are the scalar path's, bit for bit: a lane is dropped
+// only when the policy certainly misses there. A hit lies near the primitive: `accurate` decides
+// exactly, and `fast`/`stable` hits on flat primitives are within rounding of the surface (the hit
+// point is computed and tested, so it errs by a few ε·(|o| + |c| + |t·d|): pbrt-v4 "Managing
+// Rounding Error" §6.8). The filter therefore drops a primitive only when the ray's line passes its
+// bounding sphere (center c, radius R) by more than √(Kε)·(|o − c| + R) + Kε·(|o|₁ + |c|₁),
+// K = 256 unit roundoffs — the √ term also covers a discriminant error's effect near tangency
+// (Ray Tracing Gems ch. 7). No window test: a policy's t may err far more than its point near a
+// flat part seen edge-on.
+//
+// Not filtered (bound_filter_exact_v is false; the batch paths run the scalar loop): cylinders and
+// cones under `fast` and `stable`. Their textbook roots lose everything when the quadratic's
+// leading coefficient nearly vanishes (a ray parallel to the axis or to a cone's generator), and
+// the hit they then report may lie anywhere on the line (with t_error = inf) — the fuzz harnesses'
+// scene and stream invariants found such hits half a radius away from a cone.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <initializer_list>
+#include <limits>
+#include <optional>
+#include <type_traits>
+#include <vector>
+
+#include "../cone.hpp"
+#include "../cylinder.hpp"
+#include "../detail/lanes.hpp"
+#include "../disk.hpp"
+#include "../hit.hpp"
+#include "../parallelogram.hpp"
+#include "../policy.hpp"
+#include "../query.hpp"
+#include "../ray.hpp"
+#include "../triangle.hpp"
+#include "sphere.hpp"
+
+namespace rayq::batch {
+
+template <class T>
+struct BoundingSphere {
+    Vec3<T> center;
+    T radius;  // every point of the primitive is within `radius` of `center` (exactly, up to the
+               // filter's Kε·|c| slack for the rounding of the center)
+    T fine;    // the primitive's smallest nonzero length (radius, edge, axis): where its own
+               // arithmetic may underflow (BoundSlack)
+};
+
+}  // namespace rayq::batch
+
+namespace rayq::detail {
+
+// The center and radius computed in double and the radius rounded up into T with a relative
+// margin that covers double's own rounding (a few ulps of double, far below one of float).
+template <class T>
+batch::BoundingSphere<T> to_bound(const Vec3<double>& c, double radius, double fine)
+{
+    const double r = radius * (1 + 64 * std::numeric_limits<double>::epsilon());
+    T rt = static_cast<T>(r);
+    if (static_cast<double>(rt) < r) rt = std::nextafter(rt, std::numeric_limits<T>::infinity());
+    return {{static_cast<T>(c.x), static_cast<T>(c.y), static_cast<T>(c.z)}, rt, static_cast<T>(fine)};
+}
+
+// The smallest of the lengths that are not zero (a cone's apex radius is zero by design).
+inline double smallest_nonzero(std::initializer_list<double> lengths)
+{
+    double m = std::numeric_limits<double>::infinity();
+    for (const double x : lengths)
+        if (x != 0) m = std::min(m, std::abs(x));
+    return m;
+}
+
+template <class T>
+Vec3<double> wide(const Vec3<T>& v) { return {double(v.x), double(v.y), double(v.z)}; }
+
+inline double norm2(const Vec3<double>& v) { return std::sqrt(dot(v, v)); }
+
+}  // namespace rayq::detail
+
+namespace rayq::batch {
+
+template <class T>
+BoundingSphere<T> bounding_sphere(const Sphere<T>& s) { return {s.center, s.radius, s.radius}; }
+
+template <class T>
+BoundingSphere<T> bounding_sphere(const Disk<T>& d)
+{
+    return detail::to_bound<T>(detail::wide(d.center), double(d.radius), double(d.radius));
+}
+
+template <class T>
+BoundingSphere<T> bounding_sphere(const Triangle<T>& t)
+{
+    const Vec3<double> a = detail::wide(t.a), b = detail::wide(t.b), c = detail::wide(t.c);
+    const Vec3<double> m = (a + b + c) / 3.0;
+    return detail::to_bound<T>(m, std::max({detail::norm2(a - m), detail::norm2(b - m), detail::norm2(c - m)}),
+                               detail::smallest_nonzero({detail::norm2(b - a), detail::norm2(c - b), detail::norm2(a - c)}));
+}
+
+template <class T>
+BoundingSphere<T> bounding_sphere(const Parallelogram<T>& p)
+{
+    const Vec3<double> e0 = detail::wide(p.edge0), e1 = detail::wide(p.edge1);
+    const Vec3<double> m = detail::wide(p.corner) + (e0 + e1) * 0.5;
+    return detail::to_bound<T>(m, 0.5 * std::max(detail::norm2(e0 + e1), detail::norm2(e0 - e1)),
+                               detail::smallest_nonzero({detail::norm2(e0), detail::norm2(e1)}));
+}
+
+// Axial primitives: a cylinder of radius max(r0, r1) around the axis segment, from its middle.
+template <class T>
+BoundingSphere<T> axial_bound(const Vec3<T>& p0, const Vec3<T>& p1, T r0, T r1)
+{
+    const Vec3<double> a = detail::wide(p0), b = detail::wide(p1);
+    const double half = 0.5 * detail::norm2(b - a), r = std::max(double(r0), double(r1));
+    return detail::to_bound<T>((a + b) * 0.5, std::sqrt(half * half + r * r), detail::smallest_nonzero({2 * half, double(r0), double(r1)}));
+}
+
+template <class T>
+BoundingSphere<T> bounding_sphere(const Cylinder<T>& c) { return axial_bound(c.p0, c.p1, c.radius, c.radius); }
+
+template <class T>
+BoundingSphere<T> bounding_sphere(const Cone<T>& c) { return axial_bound(c.p0, c.p1, c.r0, c.r1); }
+
+template <class Prim, class = void>
+struct has_bounding_sphere : std::false_type {};
+template <class Prim>
+struct has_bounding_sphere<Prim, std::void_t<decltype(bounding_sphere(std::declval<const Prim&>()))>> : std::true_type {};
+template <class Prim>
+inline constexpr bool has_bounding_sphere_v = has_bounding_sphere<Prim>::value;
+
+template <class Prim>
+struct is_axial : std::false_type {};
+template <class T>
+struct is_axial<Cylinder<T>> : std::true_type {};
+template <class T>
+struct is_axial<Cone<T>> : std::true_type {};
+
+// Whether the bounding-sphere filter keeps every primitive `Policy` hits (see the header comment).
+template <class Policy, class Prim>
+inline constexpr bool bound_filter_exact_v =
+    has_bounding_sphere_v<Prim> && (std::is_same_v<Policy, accurate_policy> || !is_axial<Prim>::value);
+
+// The filter's constants (see the header comment).
+template <class T>
+struct BoundSlack {
+    static constexpr T k_eps = T(256) * std::numeric_limits<T>::epsilon();
+    // (a + b)² ≤ (1 + 1/16)·a² + 17·b²: a is the slack-widened radius, b the √(Kε) term, so the
+    // comparison needs no square root per lane; (|u| + R)² ≤ 2(|u|² + R²) once more.
+    static constexpr T widen = T(17) / T(16);
+    static constexpr T relative = T(68) * k_eps;  // 17·b² ≤ 68Kε(|u|² + R²) + 34(Kε|o|₁)²
+    // The argument above is about rounding. Products also underflow or overflow, and then a
+    // policy may report a hit anywhere (found by the fuzz harnesses' stream and scene
+    // invariants): the fast and stable products of up to six lengths in T, and accurate's exact
+    // expansions of up to twelve factors in double, after exact_curved_crossings has scaled the
+    // largest length to ~1 (so what counts there is the smallest length relative to the largest).
+    // Lanes are therefore always kept when a length (|o − c|, R, the primitive's finest length,
+    // |d|, |o|₁) leaves [tiny, huge], or when the finest length is below 2^-80 of |o − c|:
+    // float ~[4.8e-7, 2.6e6], double ~[1.7e-26, 2.4e51].
+    static inline const T tiny = std::max(std::cbrt(std::sqrt(std::numeric_limits<T>::min())),
+                                          static_cast<T>(std::pow(std::numeric_limits<double>::min(), 1.0 / 12)));
+    static inline const T huge = std::cbrt(std::sqrt(std::numeric_limits<T>::max()));
+    static constexpr T disparity = T(0x1p80);
+    static bool outside(T length) { return !(length > tiny && length < huge); }
+
+    // The slack-widened radius R + Kε·(R + |c|₁); inf (every comparison keeps the lane) for
+    // lengths outside the range or a center beyond it.
+    static T reach(const BoundingSphere<T>& b)
+    {
+        const T c1 = std::abs(b.center.x) + std::abs(b.center.y) + std::abs(b.center.z);
+        if (outside(b.radius) || outside(b.fine) || !(c1 < huge)) return std::numeric_limits<T>::infinity();
+        return b.radius + k_eps * (b.radius + c1);
+    }
+    // The |o − c|² from which on a lane is kept: huge², or less for a primitive whose finest
+    // length is below 2^-80 of that distance.
+    static T far(const BoundingSphere<T>& b)
+    {
+        const T f = b.fine * disparity;
+        return std::min(huge * huge, f * f);
+    }
+};
+
+// Bounding spheres as structure of arrays, in whole lane groups (padding as in SphereSoA).
+template <class T>
+struct BoundSoA {
+    static constexpr int width = rayq::detail::Lanes<T>::width;
+    std::vector<T> cx, cy, cz, reach, far;  // BoundSlack::reach and ::far of each bounding sphere
+    std::size_t count = 0;
+
+    void push_back(const BoundingSphere<T>& b)
+    {
+        if (count % width == 0) {
+            for (std::vector<T>* v : {&cx, &cy, &cz, &reach, &far}) v->resize(v->size() + width, T(0));
+        }
+        cx[count] = b.center.x;
+        cy[count] = b.center.y;
+        cz[count] = b.center.z;
+        reach[count] = BoundSlack<T>::reach(b);
+        far[count] = BoundSlack<T>::far(b);
+        ++count;
+    }
+    template <class Prim>
+    void push_back(const Prim& p) { push_back(bounding_sphere(p)); }
+    std::size_t groups() const { return cx.size() / width; }
+    std::uint32_t live(std::size_t g) const
+    {
+        const std::size_t n = count - g * width;
+        return n >= static_cast<std::size_t>(width) ? (width == 32 ? ~0u : (1u << width) - 1u) : (1u << n) - 1u;
+    }
+};
+
+// What the filter needs of one ray: the sphere filter's per-ray values, plus Kε·|o|₁ (squared
+// and scaled) for the rounding of the hit point's absolute coordinates.
+template <class T>
+struct BoundFilterRay : SphereFilterRay<T> {
+    T abs_slack;  // 34·(Kε·|o|₁)² + the underflow slack on ℓ² (inf: keep every lane)
+
+    explicit BoundFilterRay(const Ray<T>& ray) : SphereFilterRay<T>(ray)
+    {
+        const T o1 = std::abs(ray.origin.x) + std::abs(ray.origin.y) + std::abs(ray.origin.z);
+        const T ko1 = BoundSlack<T>::k_eps * o1;
+        const bool extreme = !(o1 < BoundSlack<T>::huge) || BoundSlack<T>::outside(T(1) / this->inv_len);
+        abs_slack = extreme ? std::numeric_limits<T>::infinity() : T(34) * ko1 * ko1 + this->line_slack_abs;
+    }
+};
+
+// The one test both patterns share, on packs P of T (or on T itself, the one-lane fallback): may
+// some policy hit a primitive whose bounding sphere has center offset u = o − c and widened
+// radius `reach`, along unit direction d? NaN and overflow keep a lane (the scalar path decides).
+template <class T, class P>
+auto bound_keep(const P& ux, const P& uy, const P& uz, const P& dx, const P& dy, const P& dz, const P& reach, const P& far,
+                const P& abs_slack)
+{
+    const P uu = ux * ux + uy * uy + uz * uz;
+    const P ud = ux * dx + uy * dy + uz * dz;
+    const P ll = uu - ud * ud;  // squared distance from the center to the line
+    const P limit = P(BoundSlack<T>::widen + BoundSlack<T>::relative) * (reach * reach) + P(BoundSlack<T>::relative) * uu + abs_slack;
+    return !(ll > limit) || !(uu < far);
+}
+
+// Bit i set: primitive i of lane group g may be hit by some policy; clear: certainly missed.
+template <class T>
+inline std::uint32_t bound_candidates(const BoundFilterRay<T>& f, const BoundSoA<T>& s, std::size_t g)
+{
+    using L = rayq::detail::Lanes<T>;
+    using P = typename L::pack;
+    const std::size_t i = g * L::width;
+    const auto keep = bound_keep<T>(P(f.origin.x) - L::load(&s.cx[i]), P(f.origin.y) - L::load(&s.cy[i]), P(f.origin.z) - L::load(&s.cz[i]),
+                                 P(f.unit_dir.x), P(f.unit_dir.y), P(f.unit_dir.z), L::load(&s.reach[i]), L::load(&s.far[i]), P(f.abs_slack));
+    return L::bits(keep) & s.live(g);
+}
+
+// ---- many rays against one primitive -------------------------------------------------------------
+
+// Rays, and what the filter needs of each as structure of arrays in whole lane groups (padding
+// lanes, and rays that can never hit, are masked out by live()).
+template <class T>
+struct RayStream {
+    std::vector<Ray<T>> rays;
+    static constexpr int width = rayq::detail::Lanes<T>::width;
+    std::vector<T> ox, oy, oz, dx, dy, dz, abs_slack;  // d: the unit direction
+    std::vector<unsigned char> usable_ray;
+    std::size_t count = 0;
+
+    void clear()
+    {
+        rays.clear();
+        for (std::vector<T>* v : {&ox, &oy, &oz, &dx, &dy, &dz, &abs_slack}) v->clear();
+        usable_ray.clear();
+        count = 0;
+    }
+    void push_back(const Ray<T>& ray)
+    {
+        rays.push_back(ray);
+        if (count % width == 0) {
+            for (std::vector<T>* v : {&ox, &oy, &oz, &dx, &dy, &dz, &abs_slack}) v->resize(v->size() + width, T(0));
+            usable_ray.resize(usable_ray.size() + width, 0);
+        }
+        usable_ray[count] = usable(ray);
+        if (usable_ray[count]) {  // an unusable ray never hits: its lane stays zero and is masked
+            const BoundFilterRay<T> f(ray);
+            ox[count] = f.origin.x, oy[count] = f.origin.y, oz[count] = f.origin.z;
+            dx[count] = f.unit_dir.x, dy[count] = f.unit_dir.y, dz[count] = f.unit_dir.z;
+            abs_slack[count] = f.abs_slack;
+        }
+        ++count;
+    }
+    std::size_t groups() const { return ox.size() / width; }
+    std::uint32_t live(std::size_t g) const
+    {
+        std::uint32_t m = 0;
+        for (int lane = 0; lane < width && g * width + std::size_t(lane) < count; ++lane)
+            m |= std::uint32_t(usable_ray[g * width + std::size_t(lane)]) << lane;
+        return m;
+    }
+};
+
+// Bit i set: ray i of lane group g may hit the primitive bounded by `b` under some policy.
+template <class T>
+inline std::uint32_t ray_candidates(const RayStream<T>& s, std::size_t g, const BoundingSphere<T>& b)
+{
+    using L = rayq::detail::Lanes<T>;
+    using P = typename L::pack;
+    const std::size_t i = g * L::width;
+    const T reach = BoundSlack<T>::reach(b), far = BoundSlack<T>::far(b);
+    const auto keep = bound_keep<T>(L::load(&s.ox[i]) - P(b.center.x), L::load(&s.oy[i]) - P(b.center.y), L::load(&s.oz[i]) - P(b.center.z),
+                                    L::load(&s.dx[i]), L::load(&s.dy[i]), L::load(&s.dz[i]), P(reach), P(far), L::load(&s.abs_slack[i]));
+    return L::bits(keep) & s.live(g);
+}
+
+// The stream pattern: out[i] = rayq::intersect(policy, rays.rays[i], prim), bit for bit, with
+// the filter skipping the rays that certainly miss.
+template <class Policy, class Prim, std::enable_if_t<has_bounding_sphere_v<Prim>, int> = 0>
+void intersect(Policy policy, const RayStream<scalar_t<Prim>>& rays, const Prim& prim, std::vector<std::optional<Hit<scalar_t<Prim>>>>& out)
+{
+    using T = scalar_t<Prim>;
+    out.assign(rays.count, std::nullopt);
+    if (!validate(prim)) return;
+    if constexpr (!bound_filter_exact_v<Policy, Prim>) {
+        for (std::size_t i = 0; i < rays.count; ++i) out[i] = rayq::intersect(policy, rays.rays[i], prim);
+        return;
+    }
+    const BoundingSphere<T> b = bounding_sphere(prim);
+    for (std::size_t g = 0; g < rays.groups(); ++g)
+        for (std::uint32_t m = ray_candidates(rays, g, b); m != 0; m &= m - 1) {
+            const std::size_t i = g * RayStream<T>::width + static_cast<std::size_t>(rayq::detail::lowest_bit(m));
+            out[i] = rayq::intersect(policy, rays.rays[i], prim);
+        }
+}
+
+// out[i] = rayq::occluded(policy, rays.rays[i], prim).
+template <class Policy, class Prim, std::enable_if_t<has_bounding_sphere_v<Prim>, int> = 0>
+void occluded(Policy policy, const RayStream<scalar_t<Prim>>& rays, const Prim& prim, std::vector<unsigned char>& out)
+{
+    using T = scalar_t<Prim>;
+    out.assign(rays.count, 0);
+    if (!validate(prim)) return;
+    if constexpr (!bound_filter_exact_v<Policy, Prim>) {
+        for (std::size_t i = 0; i < rays.count; ++i) out[i] = rayq::occluded(policy, rays.rays[i], prim);
+        return;
+    }
+    const BoundingSphere<T> b = bounding_sphere(prim);
+    for (std::size_t g = 0; g < rays.groups(); ++g)
+        for (std::uint32_t m = ray_candidates(rays, g, b); m != 0; m &= m - 1) {
+            const std::size_t i = g * RayStream<T>::width + static_cast<std::size_t>(rayq::detail::lowest_bit(m));
+            out[i] = rayq::occluded(policy, rays.rays[i], prim);
+        }
+}
+
+}  // namespace rayq::batch

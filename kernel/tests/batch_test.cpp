@@ -1,0 +1,332 @@
+// The batch paths of the bounded primitives (batch/bounding_sphere.hpp): the bounding-sphere filter
+// never drops a primitive that some policy hits — on rays grazing the primitive's curved side, rays
+// nearly parallel to its flat parts, rays far away and translated far from the origin — and both
+// batch patterns (one ray against many primitives in a Scene, many rays against one primitive)
+// answer exactly what the scalar queries answer, bit for bit, for every policy and type.
+#include <bitset>
+#include <cstring>
+#include <functional>
+#include <random>
+#include <tuple>
+#include <typeinfo>
+
+#include <rayq/batch/bounding_sphere.hpp>
+#include <rayq/scene.hpp>
+
+#include "test_support.hpp"
+
+namespace rayq::test {
+namespace {
+
+template <class C>
+class BatchTest : public ::testing::Test {};
+TYPED_TEST_SUITE(BatchTest, AllConfigs, ConfigNames);
+
+using V = Vec3<double>;
+
+// A point on a primitive's surface with two tangent directions there (double, before rounding).
+struct SurfacePoint {
+    V point, t1, t2;
+};
+
+struct Gen {
+    std::mt19937_64 rng;
+    explicit Gen(std::uint64_t seed) : rng(seed) {}
+    double uniform(double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); }
+    double log_uniform(double lo, double hi) { return std::pow(10.0, uniform(std::log10(lo), std::log10(hi))); }
+    V unit()
+    {
+        std::normal_distribution<double> n;
+        const V v{n(rng), n(rng), n(rng)};
+        return v / length(v);
+    }
+    V perpendicular(const V& a)
+    {
+        const V p = cross(a, unit());
+        return p / length(p);
+    }
+    template <class T>
+    static Vec3<T> cast(const V& v) { return {T(v.x), T(v.y), T(v.z)}; }
+    template <class T>
+    static V wide(const Vec3<T>& v) { return {double(v.x), double(v.y), double(v.z)}; }
+
+    // A primitive of each kind somewhere in a box of half-size `extent` around `offset`.
+    template <class T>
+    void make(Disk<T>& d, const V& at, double size) { d = {cast<T>(at), cast<T>(unit()), T(size)}; }
+    template <class T>
+    void make(Triangle<T>& t, const V& at, double size)
+    {
+        t = {cast<T>(at + unit() * size), cast<T>(at + unit() * size), cast<T>(at + unit() * size)};
+    }
+    template <class T>
+    void make(Parallelogram<T>& p, const V& at, double size)
+    {
+        p = {cast<T>(at), cast<T>(unit() * size), cast<T>(unit() * (size * uniform(0.2, 1.5)))};
+    }
+    template <class T>
+    void make(Cylinder<T>& c, const V& at, double size)
+    {
+        c = {cast<T>(at), cast<T>(at + unit() * (size * uniform(0.3, 3))), T(size * log_uniform(0.05, 1)),
+             uniform(0, 1) < 0.5 ? Caps::both : Caps::none};
+    }
+    template <class T>
+    void make(Cone<T>& c, const V& at, double size)
+    {
+        const bool apex = uniform(0, 1) < 0.3;
+        c = {cast<T>(at), T(size * log_uniform(0.05, 1)), cast<T>(at + unit() * (size * uniform(0.3, 3))),
+             apex ? T(0) : T(size * log_uniform(0.05, 1)), uniform(0, 1) < 0.5 ? Caps::both : Caps::none};
+    }
+
+    // A point on the surface (flat parts: inside or on the rim; axial: on the side or a rim).
+    template <class T>
+    SurfacePoint on(const Disk<T>& d)
+    {
+        const V n = wide(d.normal) / length(wide(d.normal)), e = perpendicular(n);
+        const double s = uniform(0, 1) < 0.5 ? 1.0 : std::sqrt(uniform(0, 1));
+        return {wide(d.center) + e * (double(d.radius) * s), e, cross(n, e)};
+    }
+    template <class T>
+    SurfacePoint on(const Triangle<T>& t)
+    {
+        const V a = wide(t.a), b = wide(t.b), c = wide(t.c);
+        double u = uniform(0, 1), v = uniform(0, 1);
+        if (u + v > 1) u = 1 - u, v = 1 - v;
+        if (uniform(0, 1) < 0.5) v = 0;  // on an edge
+        const V e = (b - a) / length(b - a);
+        const V n = cross(b - a, c - a);
+        return {a + (b - a) * u + (c - a) * v, e, cross(n / length(n), e)};
+    }
+    template <class T>
+    SurfacePoint on(const Parallelogram<T>& p)
+    {
+        const V e0 = wide(p.edge0), e1 = wide(p.edge1);
+        const double u = uniform(0, 1), v = uniform(0, 1) < 0.5 ? 1.0 : uniform(0, 1);
+        const V n = cross(e0, e1);
+        return {wide(p.corner) + e0 * u + e1 * v, e0 / length(e0), cross(n / length(n), e0 / length(e0))};
+    }
+    SurfacePoint axial(const V& p0, double r0, const V& p1, double r1)
+    {
+        const V axis = (p1 - p0) / length(p1 - p0), e1 = perpendicular(axis), e2 = cross(axis, e1);
+        const double s = uniform(0, 1) < 0.3 ? (uniform(0, 1) < 0.5 ? 0.0 : 1.0) : uniform(0, 1);
+        const double phi = uniform(0, 6.283185307179586);
+        const V radial = e1 * std::cos(phi) + e2 * std::sin(phi);
+        const double r = r0 + (r1 - r0) * s;
+        const V point = p0 + (p1 - p0) * s + radial * r;
+        const V around = cross(axis, radial);                      // tangent along the circle
+        const V along = (p1 - p0) + radial * (r1 - r0);            // tangent along the generator
+        return {point, around, along / length(along)};
+    }
+    template <class T>
+    SurfacePoint on(const Cylinder<T>& c) { return axial(wide(c.p0), double(c.radius), wide(c.p1), double(c.radius)); }
+    template <class T>
+    SurfacePoint on(const Cone<T>& c) { return axial(wide(c.p0), double(c.r0), wide(c.p1), double(c.r1)); }
+
+    // A ray that stresses the filter near `prim`: along a tangent of its surface tilted by ±10^-k
+    // out of it (grazing a curved side, nearly parallel to a flat part), from near or far; or a
+    // random ray; with an odd direction length and windows at times.
+    template <class T, class Prim>
+    Ray<T> ray_near(const Prim& prim, double extent)
+    {
+        const int kind = std::uniform_int_distribution<int>(0, 5)(rng);
+        const SurfacePoint s = on(prim);
+        V o, d;
+        if (kind == 0) {
+            o = V{uniform(-2, 2), uniform(-2, 2), uniform(-2, 2)} * extent + s.point;
+            d = unit();
+        } else {
+            // kind 5: along t2 (an axial primitive's generator, where its quadratic degenerates).
+            const double phi = kind == 5 ? 1.5707963267948966 : uniform(0, 6.283185307179586);
+            const V tangent = s.t1 * std::cos(phi) + s.t2 * std::sin(phi);
+            V n = cross(s.t1, s.t2);
+            n = n / length(n);
+            const int k = std::uniform_int_distribution<int>(1, std::is_same_v<T, float> ? 7 : 15)(rng);
+            d = tangent + n * ((uniform(0, 1) < 0.5 ? -1 : 1) * std::pow(10.0, -k));
+            const double distance = kind == 2 ? log_uniform(1e2, 1e6) * extent : uniform(0, 3) * extent;
+            o = s.point - d * distance + n * (uniform(0, 1) < 0.2 ? uniform(-1e-6, 1e-6) * extent : 0.0);
+        }
+        if (kind == 3) d = d * log_uniform(1e-12, 1e12);
+        Ray<T> out{cast<T>(o), cast<T>(d)};
+        if (uniform(0, 1) < 0.2) out.tmin = -out.tmax;
+        return out;
+    }
+};
+
+// The bounded primitives with a bounding-sphere filter, for one scalar type.
+template <class T>
+using Bounded = std::tuple<Disk<T>, Triangle<T>, Parallelogram<T>, Cylinder<T>, Cone<T>>;
+
+template <class F, class... Prims>
+void each_type(F f, std::tuple<Prims...>*) { (f(static_cast<Prims*>(nullptr)), ...); }
+
+template <class T>
+bool same_bits(const T& a, const T& b) { return std::memcmp(&a, &b, sizeof(T)) == 0; }
+
+template <class T>
+void expect_same(const std::optional<Hit<T>>& a, const std::optional<Hit<T>>& b)
+{
+    ASSERT_EQ(a.has_value(), b.has_value());
+    if (!a) return;
+    EXPECT_TRUE(same_bits(a->t, b->t)) << a->t << " vs " << b->t;
+    EXPECT_EQ(a->point, b->point);
+    EXPECT_EQ(a->normal, b->normal);
+    EXPECT_EQ(a->part, b->part);
+    EXPECT_EQ(a->front_face, b->front_face);
+    EXPECT_TRUE(same_bits(a->t_error, b->t_error));
+}
+
+// The bounding sphere holds the primitive: sampled surface points lie inside it.
+TYPED_TEST(BatchTest, BoundingSpheresHoldTheirPrimitives)
+{
+    using T = typename TypeParam::T;
+    Gen g(0xB0D5 + sizeof(T));
+    each_type(
+        [&](auto* tag) {
+            using Prim = std::remove_pointer_t<decltype(tag)>;
+            for (int i = 0; i < 200; ++i) {
+                Prim prim;
+                g.make(prim, g.unit() * g.log_uniform(1e-3, 1e4), g.log_uniform(1e-3, 1e3));
+                const batch::BoundingSphere<T> b = batch::bounding_sphere(prim);
+                for (int k = 0; k < 20; ++k) {
+                    const V p = g.on(prim).point;
+                    const double distance = length(p - Gen::wide(b.center));
+                    // The center is rounded to T: the filter's Kε·|c|₁ slack covers that.
+                    const double slack = 4 * std::numeric_limits<T>::epsilon() * length(Gen::wide(b.center)) + 1e-300;
+                    EXPECT_LE(distance, double(b.radius) * (1 + 1e-12) + slack) << typeid(Prim).name();
+                }
+            }
+        },
+        static_cast<Bounded<T>*>(nullptr));
+}
+
+// Every primitive the policy hits is kept; most of the scattered others are culled. (Cylinders and
+// cones under fast and stable are not filtered: bound_filter_exact_v.)
+TYPED_TEST(BatchTest, FilterNeverDropsAHit)
+{
+    using T = typename TypeParam::T;
+    Gen g(0xB0D6 + sizeof(T));
+    each_type(
+        [&](auto* tag) {
+            using Prim = std::remove_pointer_t<decltype(tag)>;
+            if constexpr (!batch::bound_filter_exact_v<std::decay_t<decltype(TypeParam::policy)>, Prim>) return;
+            SCOPED_TRACE(typeid(Prim).name());
+            std::size_t kept = 0, lanes = 0, hits = 0;
+            for (int scene = 0; scene < 24; ++scene) {
+                // Far from the origin at times: the hit point's rounding grows with |o| and |c|.
+                const V offset = scene % 3 == 0 ? g.unit() * g.log_uniform(1e2, 1e5) : V{0, 0, 0};
+                std::vector<Prim> prims(48);
+                batch::BoundSoA<T> soa;
+                for (Prim& p : prims) {
+                    g.make(p, offset + V{g.uniform(-10, 10), g.uniform(-10, 10), g.uniform(-10, 10)}, g.log_uniform(0.01, 2));
+                    soa.push_back(p);
+                }
+                for (int k = 0; k < 120; ++k) {
+                    const Ray<T> ray = g.ray_near<T>(prims[std::size_t(k) % prims.size()], 10.0);
+                    if (!usable(ray)) continue;
+                    const batch::BoundFilterRay<T> f(ray);
+                    for (std::size_t grp = 0; grp < soa.groups(); ++grp) {
+                        const std::uint32_t m = batch::bound_candidates(f, soa, grp);
+                        kept += std::bitset<32>(m).count();
+                        for (int lane = 0; lane < batch::BoundSoA<T>::width; ++lane) {
+                            const std::size_t i = grp * batch::BoundSoA<T>::width + std::size_t(lane);
+                            if (i >= prims.size()) break;
+                            ++lanes;
+                            const bool hit = occluded(TypeParam::policy, ray, prims[i]);
+                            hits += hit;
+                            if (hit) {
+                                EXPECT_TRUE(m >> lane & 1u) << "dropped primitive " << i << " that the policy hits";
+                            }
+                        }
+                    }
+                }
+            }
+            EXPECT_GT(hits, 0u);
+            EXPECT_LT(kept, lanes / 2) << "kept " << kept << " of " << lanes << " lanes (" << hits << " hits)";
+        },
+        static_cast<Bounded<T>*>(nullptr));
+}
+
+// Many rays against one primitive: batch::intersect / batch::occluded equal the scalar queries.
+TYPED_TEST(BatchTest, StreamEqualsTheScalarQueries)
+{
+    using T = typename TypeParam::T;
+    const auto p = TypeParam::policy;
+    Gen g(0xB0D7 + sizeof(T));
+    each_type(
+        [&](auto* tag) {
+            using Prim = std::remove_pointer_t<decltype(tag)>;
+            SCOPED_TRACE(typeid(Prim).name());
+            std::size_t hits = 0, rays = 0;
+            for (int n : {1, 5, 37, 300}) {
+                Prim prim;
+                g.make(prim, g.unit() * g.uniform(0, 3), g.log_uniform(0.1, 2));
+                batch::RayStream<T> stream;
+                for (int k = 0; k < n; ++k) stream.push_back(g.ray_near<T>(prim, 3.0));
+                stream.push_back(Ray<T>{Vec3<T>{T(0), T(0), T(0)}, Vec3<T>{T(0), T(0), T(0)}});  // never hits
+                std::vector<std::optional<Hit<T>>> got;
+                std::vector<unsigned char> blocked;
+                batch::intersect(p, stream, prim, got);
+                batch::occluded(p, stream, prim, blocked);
+                ASSERT_EQ(got.size(), stream.rays.size());
+                ASSERT_EQ(blocked.size(), stream.rays.size());
+                for (std::size_t i = 0; i < stream.rays.size(); ++i) {
+                    const auto expected = intersect(p, stream.rays[i], prim);
+                    expect_same(got[i], expected);
+                    EXPECT_EQ(bool(blocked[i]), occluded(p, stream.rays[i], prim));
+                    hits += expected.has_value();
+                    ++rays;
+                }
+            }
+            EXPECT_GT(hits, rays / 10);
+        },
+        static_cast<Bounded<T>*>(nullptr));
+}
+
+// One ray against many primitives in a Scene: the same answer as the scalar loop, bit for bit.
+TYPED_TEST(BatchTest, SceneOfEveryBoundedTypeEqualsTheScalarLoop)
+{
+    using T = typename TypeParam::T;
+    const auto p = TypeParam::policy;
+    Gen g(0xB0D8 + sizeof(T));
+    Scene<Disk<T>, Triangle<T>, Parallelogram<T>, Cylinder<T>, Cone<T>> scene;
+    std::tuple<std::vector<Disk<T>>, std::vector<Triangle<T>>, std::vector<Parallelogram<T>>, std::vector<Cylinder<T>>, std::vector<Cone<T>>> lists;
+    std::vector<std::function<Ray<T>()>> aims;
+    each_type(
+        [&](auto* tag) {
+            using Prim = std::remove_pointer_t<decltype(tag)>;
+            auto& list = std::get<std::vector<Prim>>(lists);
+            for (int i = 0; i < 20; ++i) {
+                Prim prim;
+                g.make(prim, V{g.uniform(-8, 8), g.uniform(-8, 8), g.uniform(-8, 8)}, g.log_uniform(0.05, 2));
+                list.push_back(prim);
+                EXPECT_EQ(scene.add(prim), list.size() - 1);
+            }
+            aims.push_back([&g, &list] { return g.ray_near<T>(list[std::uniform_int_distribution<std::size_t>(0, list.size() - 1)(g.rng)], 8.0); });
+        },
+        static_cast<Bounded<T>*>(nullptr));
+    for (int k = 0; k < 1500; ++k) {
+        const Ray<T> ray = aims[std::size_t(k) % aims.size()]();
+        std::optional<SceneHit<T>> expected;
+        int type = 0;
+        std::apply(
+            [&](const auto&... list) {
+                const auto one = [&](const auto& prims) {
+                    for (std::size_t i = 0; i < prims.size(); ++i)
+                        if (const auto h = intersect(p, ray, prims[i]); h && (!expected || h->t < expected->hit.t))
+                            expected = SceneHit<T>{*h, type, i};
+                    ++type;
+                };
+                (one(list), ...);
+            },
+            lists);
+        const auto got = intersect(p, ray, scene);
+        ASSERT_EQ(got.has_value(), expected.has_value()) << "ray " << k;
+        EXPECT_EQ(occluded(p, ray, scene), expected.has_value());
+        if (!got) continue;
+        EXPECT_EQ(got->type, expected->type);
+        EXPECT_EQ(got->index, expected->index);
+        expect_same(std::optional<Hit<T>>(got->hit), std::optional<Hit<T>>(expected->hit));
+    }
+}
+
+}  // namespace
+}  // namespace rayq::test
