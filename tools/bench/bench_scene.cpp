@@ -1,13 +1,18 @@
-// rayq-bench-scene: one ray against N primitives (N = 1, 16, 1,024), the BVH-leaf pattern.
-// For spheres (float and double, every policy) and capped cylinders it compares
+// rayq-bench-scene: the two batch patterns.
+// One ray against N primitives (N = 1, 16, 1,024), the BVH-leaf pattern, for spheres (every
+// policy), capped cylinders (stable: not filtered; accurate: the bounding-sphere filter), cones
+// and triangles, float and double:
 //   loop     the scalar intersect()/occluded() over an array, keeping the nearest hit;
-//   scene    rayq::Scene<...> (compile-time type list, SIMD sphere filter, one hit record);
-//   variant  a runtime-dispatched scene: std::vector<std::variant<Sphere, Cylinder>> + std::visit.
+//   scene    rayq::Scene<...> (compile-time type list, SIMD culling filters, one hit record);
+//   variant  a runtime-dispatched scene: std::vector<std::variant<...>> + std::visit.
 // Names: <query>/<prim>/<type>/<policy>/<variant>/<N>. items_per_second is ray–primitive tests
 // per second (rays × N); "hits" the fraction of rays that hit something. Rays start outside the
 // scene's box and aim at random points inside it; primitives are random, ~1% of the box each.
+// N rays against one primitive, the stream pattern: stream/<prim>/<type>/<policy>/<scalar|batch>/1
+// (batch::intersect over a RayStream of the same 1,024 rays; items: ray–primitive tests).
 #include <benchmark/benchmark.h>
 #include <rayq/rayq.hpp>
+#include <rayq/batch/bounding_sphere.hpp>
 #include <rayq/scene.hpp>
 
 #include <cmath>
@@ -25,31 +30,59 @@ constexpr const char* policy_name(rayq::fast_policy) { return "fast"; }
 constexpr const char* policy_name(rayq::stable_policy) { return "stable"; }
 constexpr const char* policy_name(rayq::accurate_policy) { return "accurate"; }
 
-template <class T>
+template <class Prim>
 struct Setup {
-    std::vector<rayq::Sphere<T>> spheres;
-    std::vector<rayq::Cylinder<T>> cylinders;
+    using T = rayq::scalar_t<Prim>;
+    std::vector<Prim> prims;
     std::vector<rayq::Ray<T>> rays;
 };
 
-// N primitives in the cube [-1, 1]³ with radius ~ N^(-1/3)/4 (so rays meet a few of them at every
-// N), rays from a sphere of radius 4 at points of the cube.
 template <class T>
-Setup<T> setup(std::size_t n, bool cylinders)
+rayq::Vec3<T> v3(std::mt19937_64& rng, std::normal_distribution<double>& g)
 {
+    return {T(g(rng)), T(g(rng)), T(g(rng))};
+}
+
+// A primitive of size ~r at c (spheres, capped cylinders and cones, triangles).
+template <class T>
+void make(rayq::Sphere<T>& s, const rayq::Vec3<T>& c, double r, std::mt19937_64& rng, std::normal_distribution<double>&)
+{
+    s = {c, T(r * (0.5 + 0.5 * std::uniform_real_distribution<double>(0, 2)(rng)))};
+}
+template <class T>
+void make(rayq::Cylinder<T>& s, const rayq::Vec3<T>& c, double r, std::mt19937_64& rng, std::normal_distribution<double>& g)
+{
+    s = rayq::Cylinder<T>::from_center(c, v3<T>(rng, g), T(r), T(r), rayq::Caps::both);
+}
+template <class T>
+void make(rayq::Cone<T>& s, const rayq::Vec3<T>& c, double r, std::mt19937_64& rng, std::normal_distribution<double>& g)
+{
+    const rayq::Vec3<T> half = rayq::normalize(v3<T>(rng, g)) * T(r);
+    s = {c - half, T(r), c + half, T(r / 3), rayq::Caps::both};
+}
+template <class T>
+void make(rayq::Triangle<T>& s, const rayq::Vec3<T>& c, double r, std::mt19937_64& rng, std::normal_distribution<double>& g)
+{
+    const auto corner = [&] { return c + rayq::normalize(v3<T>(rng, g)) * T(1.5 * r); };
+    s = {corner(), corner(), corner()};
+}
+
+// N primitives in the cube [-1, 1]³ with size ~ N^(-1/3)/4 (so rays meet a few of them at every
+// N), rays from a sphere of radius 4 at points of the cube.
+template <class Prim>
+Setup<Prim> setup(std::size_t n)
+{
+    using T = rayq::scalar_t<Prim>;
     std::mt19937_64 rng(0x5CE4E000 + n);
     std::uniform_real_distribution<double> u(-1, 1);
     std::normal_distribution<double> g;
-    Setup<T> s;
+    Setup<Prim> s;
     const double r = 0.25 / std::cbrt(double(n));
     for (std::size_t i = 0; i < n; ++i) {
         const rayq::Vec3<T> c{T(u(rng)), T(u(rng)), T(u(rng))};
-        if (cylinders) {
-            const rayq::Vec3<T> axis{T(g(rng)), T(g(rng)), T(g(rng))};
-            s.cylinders.push_back(rayq::Cylinder<T>::from_center(c, axis, T(r), T(r), rayq::Caps::both));
-        } else {
-            s.spheres.push_back({c, T(r * (0.5 + 0.5 * (u(rng) + 1)))});
-        }
+        Prim prim;
+        make(prim, c, r, rng, g);
+        s.prims.push_back(prim);
     }
     for (std::size_t i = 0; i < kRays; ++i) {
         rayq::Vec3<double> o{g(rng), g(rng), g(rng)};
@@ -83,14 +116,10 @@ constexpr const char* variant_name(Variant v) { return v == Variant::loop ? "loo
 template <class T, class Policy, class Prim>
 void run(benchmark::State& state, Policy p, Variant v, bool closest, std::size_t n)
 {
-    constexpr bool cyl = std::is_same_v<Prim, rayq::Cylinder<T>>;
-    const Setup<T> s = setup<T>(n, cyl);
-    const std::vector<Prim>& prims = [&]() -> const std::vector<Prim>& {
-        if constexpr (cyl) return s.cylinders;
-        else return s.spheres;
-    }();
-    rayq::Scene<rayq::Sphere<T>, rayq::Cylinder<T>> scene;
-    std::vector<std::variant<rayq::Sphere<T>, rayq::Cylinder<T>>> dynamic;
+    const Setup<Prim> s = setup<Prim>(n);
+    const std::vector<Prim>& prims = s.prims;
+    rayq::Scene<rayq::Sphere<T>, rayq::Cylinder<T>, rayq::Cone<T>, rayq::Triangle<T>> scene;
+    std::vector<std::variant<rayq::Sphere<T>, rayq::Cylinder<T>, rayq::Cone<T>, rayq::Triangle<T>>> dynamic;
     for (const Prim& prim : prims) scene.add(prim), dynamic.emplace_back(prim);
     std::size_t hits = 0;
     for (auto _ : state) {
@@ -142,6 +171,40 @@ void add(const char* prim_name, Policy p)
             }
 }
 
+// N = 1,024 rays against one primitive: the scalar queries in a loop, or batch::intersect over a
+// RayStream (the bounding-sphere filter in SIMD lanes, then the scalar query on the rays it keeps).
+template <class T, class Policy, class Prim>
+void run_stream(benchmark::State& state, Policy p, bool batch)
+{
+    const Setup<Prim> s = setup<Prim>(1);
+    rayq::batch::RayStream<T> stream;
+    for (const rayq::Ray<T>& ray : s.rays) stream.push_back(ray);
+    std::vector<std::optional<rayq::Hit<T>>> out(s.rays.size());
+    std::size_t hits = 0;
+    for (auto _ : state) {
+        if (batch) {
+            rayq::batch::intersect(p, stream, s.prims[0], out);
+        } else {
+            for (std::size_t i = 0; i < s.rays.size(); ++i) out[i] = rayq::intersect(p, s.rays[i], s.prims[0]);
+        }
+        hits = 0;
+        for (const auto& h : out) hits += h.has_value();
+        benchmark::DoNotOptimize(hits);
+    }
+    state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * s.rays.size()));
+    state.counters["hits"] = double(hits) / double(s.rays.size());
+}
+
+template <class T, class Policy, class Prim>
+void add_stream(const char* prim_name, Policy p)
+{
+    for (bool batch : {false, true}) {
+        const std::string name = std::string("stream/") + prim_name + "/" + type_name<T>() + "/" + policy_name(p) + "/" +
+                                 (batch ? "batch" : "scalar") + "/1";
+        benchmark::RegisterBenchmark(name.c_str(), [=](benchmark::State& st) { run_stream<T, Policy, Prim>(st, p, batch); });
+    }
+}
+
 template <class T>
 void add_all()
 {
@@ -149,6 +212,14 @@ void add_all()
     add<T, rayq::stable_policy, rayq::Sphere<T>>("sphere", rayq::stable);
     add<T, rayq::accurate_policy, rayq::Sphere<T>>("sphere", rayq::accurate);
     add<T, rayq::stable_policy, rayq::Cylinder<T>>("cylinder", rayq::stable);
+    add<T, rayq::accurate_policy, rayq::Cylinder<T>>("cylinder", rayq::accurate);
+    add<T, rayq::accurate_policy, rayq::Cone<T>>("cone", rayq::accurate);
+    add<T, rayq::fast_policy, rayq::Triangle<T>>("triangle", rayq::fast);
+    add<T, rayq::accurate_policy, rayq::Triangle<T>>("triangle", rayq::accurate);
+    add_stream<T, rayq::accurate_policy, rayq::Cylinder<T>>("cylinder", rayq::accurate);
+    add_stream<T, rayq::accurate_policy, rayq::Cone<T>>("cone", rayq::accurate);
+    add_stream<T, rayq::fast_policy, rayq::Triangle<T>>("triangle", rayq::fast);
+    add_stream<T, rayq::accurate_policy, rayq::Triangle<T>>("triangle", rayq::accurate);
 }
 
 }  // namespace
