@@ -180,6 +180,18 @@ TEST(MeshIO, ReadFailsCleanly)
     EXPECT_NE(error.find("README.md: expected a file named .off, .obj, .ply or .om"), std::string::npos) << error;
 }
 
+// read_mesh on `text` written to `path` (removed afterwards).
+bool read_written(const std::string& path, const char* text, TriMesh& m, bool* has_normals, std::string* error)
+{
+    {
+        std::ofstream out(path, std::ios::binary);
+        out << text;
+    }
+    const bool ok = read_mesh(m, path, has_normals, error);
+    std::remove(path.c_str());
+    return ok;
+}
+
 // A malformed file: false, an empty mesh, and "file:line: expected …".
 TEST(MeshIO, MalformedTextFilesNameTheLine)
 {
@@ -214,14 +226,9 @@ TEST(MeshIO, MalformedTextFilesNameTheLine)
     for (const Bad& c : cases) {
         SCOPED_TRACE(c.name);
         const std::string path = temp(c.name);
-        {
-            std::ofstream out(path, std::ios::binary);
-            out << c.text;
-        }
         TriMesh m;
         std::string error;
-        const bool ok = read_mesh(m, path, nullptr, &error);
-        std::remove(path.c_str());
+        const bool ok = read_written(path, c.text, m, nullptr, &error);
         if (!c.expected) {
             EXPECT_TRUE(ok) << error;
             continue;
@@ -254,16 +261,10 @@ TEST(MeshIO, ReadsTheFormatsFreedoms)
     };
     for (const Good& c : cases) {
         SCOPED_TRACE(c.name);
-        const std::string path = temp(c.name);
-        {
-            std::ofstream out(path, std::ios::binary);
-            out << c.text;
-        }
         TriMesh m;
         std::string error;
         bool has_normals = false;
-        ASSERT_TRUE(read_mesh(m, path, &has_normals, &error)) << error;
-        std::remove(path.c_str());
+        ASSERT_TRUE(read_written(temp(c.name), c.text, m, &has_normals, &error)) << error;
         EXPECT_EQ(m.n_faces(), c.faces);
         EXPECT_EQ(has_normals, c.normals);
         EXPECT_EQ(m.point(m.vertex_handle(0))[0], 0.1) << "read as a double, not rounded to float";

@@ -317,43 +317,36 @@ inline std::uint32_t ray_candidates(const RayStream<T>& s, std::size_t g, const 
     return L::bits(keep) & s.live(g);
 }
 
+// Calls visit(i) for every ray i of `rays` that may hit `prim` under `policy`, in order: the
+// filter's candidates, or every usable ray where the filter is not exact for this policy.
+template <class Policy, class Prim, class Visit>
+void each_candidate(Policy, const RayStream<scalar_t<Prim>>& rays, const Prim& prim, Visit visit)
+{
+    using T = scalar_t<Prim>;
+    if (!validate(prim)) return;
+    const BoundingSphere<T> b = bounding_sphere(prim);
+    for (std::size_t g = 0; g < rays.groups(); ++g) {
+        std::uint32_t m = rays.live(g);
+        if constexpr (bound_filter_exact_v<Policy, Prim>) m = ray_candidates(rays, g, b);
+        for (; m != 0; m &= m - 1) visit(g * RayStream<T>::width + static_cast<std::size_t>(rayq::detail::lowest_bit(m)));
+    }
+}
+
 // The stream pattern: out[i] = rayq::intersect(policy, rays.rays[i], prim), bit for bit, with
 // the filter skipping the rays that certainly miss.
 template <class Policy, class Prim, std::enable_if_t<has_bounding_sphere_v<Prim>, int> = 0>
 void intersect(Policy policy, const RayStream<scalar_t<Prim>>& rays, const Prim& prim, std::vector<std::optional<Hit<scalar_t<Prim>>>>& out)
 {
-    using T = scalar_t<Prim>;
     out.assign(rays.count, std::nullopt);
-    if (!validate(prim)) return;
-    if constexpr (!bound_filter_exact_v<Policy, Prim>) {
-        for (std::size_t i = 0; i < rays.count; ++i) out[i] = rayq::intersect(policy, rays.rays[i], prim);
-        return;
-    }
-    const BoundingSphere<T> b = bounding_sphere(prim);
-    for (std::size_t g = 0; g < rays.groups(); ++g)
-        for (std::uint32_t m = ray_candidates(rays, g, b); m != 0; m &= m - 1) {
-            const std::size_t i = g * RayStream<T>::width + static_cast<std::size_t>(rayq::detail::lowest_bit(m));
-            out[i] = rayq::intersect(policy, rays.rays[i], prim);
-        }
+    each_candidate(policy, rays, prim, [&](std::size_t i) { out[i] = rayq::intersect(policy, rays.rays[i], prim); });
 }
 
 // out[i] = rayq::occluded(policy, rays.rays[i], prim).
 template <class Policy, class Prim, std::enable_if_t<has_bounding_sphere_v<Prim>, int> = 0>
 void occluded(Policy policy, const RayStream<scalar_t<Prim>>& rays, const Prim& prim, std::vector<unsigned char>& out)
 {
-    using T = scalar_t<Prim>;
     out.assign(rays.count, 0);
-    if (!validate(prim)) return;
-    if constexpr (!bound_filter_exact_v<Policy, Prim>) {
-        for (std::size_t i = 0; i < rays.count; ++i) out[i] = rayq::occluded(policy, rays.rays[i], prim);
-        return;
-    }
-    const BoundingSphere<T> b = bounding_sphere(prim);
-    for (std::size_t g = 0; g < rays.groups(); ++g)
-        for (std::uint32_t m = ray_candidates(rays, g, b); m != 0; m &= m - 1) {
-            const std::size_t i = g * RayStream<T>::width + static_cast<std::size_t>(rayq::detail::lowest_bit(m));
-            out[i] = rayq::occluded(policy, rays.rays[i], prim);
-        }
+    each_candidate(policy, rays, prim, [&](std::size_t i) { out[i] = rayq::occluded(policy, rays.rays[i], prim); });
 }
 
 }  // namespace rayq::batch
