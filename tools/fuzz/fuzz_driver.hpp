@@ -13,7 +13,7 @@
 
 #include <rayq/fuzz/decoder.hpp>
 #include <rayq/fuzz/fixture_line.hpp>
-#include <rayq/fuzz/invariants.hpp>
+#include <rayq/fuzz/checks.hpp>
 
 namespace rayq::fuzz {
 

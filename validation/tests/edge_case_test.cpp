@@ -27,7 +27,7 @@
 
 #include <rayq/fuzz/decoder.hpp>
 #include <rayq/fuzz/fixture_line.hpp>
-#include <rayq/fuzz/invariants.hpp>
+#include <rayq/fuzz/checks.hpp>
 
 #ifdef RAYQ_EDGE_CASE_ORACLE
 #include <rayq/oracle/fixtures.hpp>

@@ -10,7 +10,7 @@
 
 #include <rayq/fuzz/decoder.hpp>
 #include <rayq/fuzz/fixture_line.hpp>
-#include <rayq/fuzz/invariants.hpp>
+#include <rayq/fuzz/checks.hpp>
 
 #ifndef RAYQ_FUZZ_HARNESS
 #error "define RAYQ_FUZZ_HARNESS (flat, sphere, axial, quadric or transformed)"

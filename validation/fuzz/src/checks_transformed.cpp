@@ -1,0 +1,7 @@
+// check() for the transformed family's primitives (see rayq/fuzz/checks.hpp).
+#include <rayq/fuzz/checks.hpp>
+
+namespace rayq::fuzz {
+RAYQ_FUZZ_TRANSFORMED_PRIMITIVES(RAYQ_FUZZ_CHECK_INSTANTIATE, float)
+RAYQ_FUZZ_TRANSFORMED_PRIMITIVES(RAYQ_FUZZ_CHECK_INSTANTIATE, double)
+}  // namespace rayq::fuzz
