@@ -83,7 +83,7 @@ struct SceneStore {
             for (std::size_t g = 0; g < soa.groups(); ++g) {
                 std::uint32_t m = 0;
                 if constexpr (sphere) m = batch::sphere_candidates(f, ray.tmin, ray.tmax, soa, g);
-                else m = batch::bound_candidates(f, soa, g);
+                else m = batch::bound_candidates<Policy>(f, soa, g);
                 for (; m != 0; m &= m - 1) {
                     const std::size_t i = g * decltype(soa)::width + static_cast<std::size_t>(lowest_bit(m));
                     if (valid[i] && visit(i)) return true;

@@ -17,6 +17,16 @@
 // (Ray Tracing Gems ch. 7). No window test: a policy's t may err far more than its point near a
 // flat part seen edge-on.
 //
+// Triangles and parallelograms seen nearly edge-on are kept too (BoundingSphere::edge_on). `fast`
+// and `stable` decide inside with Cramer's numerators (Möller–Trumbore), each erring by a few ε of
+// |q|·|d|·|e|, against the determinant det = −d·(e0 × e1) = |d|·|e0 × e1|·sin θ. Once these errors
+// are not small against det, the point the test accepts lies up to ~γ·(|q| + |e|)·κ/sin θ from
+// the primitive within its plane, κ = |e0|·|e1|/|e0 × e1| (1.15 for an equilateral triangle, huge
+// for a sliver): a line nearly in the plane and far beside the primitive can be "hit". The fuzz
+// harnesses' scene and stream invariants found such a hit on a float sliver triangle (κ ≈ 3e7).
+// Bounding that distance by the slack above gives: keep every lane with
+// sin θ = |d̂·n̂| ≤ 40·√ε·κ (about 1.4% of rays for κ = 1 in float, 6e-7 in double).
+//
 // Not filtered (bound_filter_exact_v is false; the batch paths run the scalar loop): cylinders and
 // cones under `fast` and `stable`. Their textbook roots lose everything when the quadratic's
 // leading coefficient nearly vanishes (a ray parallel to the axis or to a cone's generator), and
@@ -54,6 +64,8 @@ struct BoundingSphere {
                // filter's Kε·|c| slack for the rounding of the center)
     T fine;    // the primitive's smallest nonzero length (radius, edge, axis): where its own
                // arithmetic may underflow (BoundSlack)
+    Vec3<T> normal{};  // a planar (Cramer) primitive's unit normal, else zero
+    T edge_on = -1;    // lanes with |d̂·normal| <= edge_on are kept under fast and stable (header)
 };
 
 }  // namespace rayq::batch
@@ -85,6 +97,24 @@ Vec3<double> wide(const Vec3<T>& v) { return {double(v.x), double(v.y), double(v
 
 inline double norm2(const Vec3<double>& v) { return std::sqrt(dot(v, v)); }
 
+// The edge-on guard of a primitive whose inside test solves o + t·d = corner + α·e0 + β·e1 by
+// Cramer's rule (see the header): n̂ and 40·√ε·κ, plus a few ε for the rounding of n̂ and of the
+// lane's d̂·n̂; 2 (every lane) when that reaches 1 or κ is not finite.
+template <class T>
+void set_edge_on(batch::BoundingSphere<T>& b, const Vec3<double>& e0, const Vec3<double>& e1)
+{
+    const Vec3<double> n = cross(e0, e1);
+    const double area = norm2(n), kappa = norm2(e0) * norm2(e1) / area;
+    const double eps = std::numeric_limits<T>::epsilon();
+    const double limit = 40 * std::sqrt(eps) * kappa + 16 * eps;
+    if (!(limit < 1)) {
+        b.edge_on = T(2);
+        return;
+    }
+    b.normal = {static_cast<T>(n.x / area), static_cast<T>(n.y / area), static_cast<T>(n.z / area)};
+    b.edge_on = static_cast<T>(limit);
+}
+
 }  // namespace rayq::detail
 
 namespace rayq::batch {
@@ -103,8 +133,10 @@ BoundingSphere<T> bounding_sphere(const Triangle<T>& t)
 {
     const Vec3<double> a = detail::wide(t.a), b = detail::wide(t.b), c = detail::wide(t.c);
     const Vec3<double> m = (a + b + c) / 3.0;
-    return detail::to_bound<T>(m, std::max({detail::norm2(a - m), detail::norm2(b - m), detail::norm2(c - m)}),
-                               detail::smallest_nonzero({detail::norm2(b - a), detail::norm2(c - b), detail::norm2(a - c)}));
+    BoundingSphere<T> bound = detail::to_bound<T>(m, std::max({detail::norm2(a - m), detail::norm2(b - m), detail::norm2(c - m)}),
+                                                  detail::smallest_nonzero({detail::norm2(b - a), detail::norm2(c - b), detail::norm2(a - c)}));
+    detail::set_edge_on(bound, b - a, c - a);  // the edges planar_coordinates solves with
+    return bound;
 }
 
 template <class T>
@@ -112,8 +144,10 @@ BoundingSphere<T> bounding_sphere(const Parallelogram<T>& p)
 {
     const Vec3<double> e0 = detail::wide(p.edge0), e1 = detail::wide(p.edge1);
     const Vec3<double> m = detail::wide(p.corner) + (e0 + e1) * 0.5;
-    return detail::to_bound<T>(m, 0.5 * std::max(detail::norm2(e0 + e1), detail::norm2(e0 - e1)),
-                               detail::smallest_nonzero({detail::norm2(e0), detail::norm2(e1)}));
+    BoundingSphere<T> bound = detail::to_bound<T>(m, 0.5 * std::max(detail::norm2(e0 + e1), detail::norm2(e0 - e1)),
+                                                  detail::smallest_nonzero({detail::norm2(e0), detail::norm2(e1)}));
+    detail::set_edge_on(bound, e0, e1);
+    return bound;
 }
 
 // Axial primitives: a cylinder of radius max(r0, r1) around the axis segment, from its middle.
@@ -194,18 +228,26 @@ template <class T>
 struct BoundSoA {
     static constexpr int width = rayq::detail::Lanes<T>::width;
     std::vector<T> cx, cy, cz, reach, far;  // BoundSlack::reach and ::far of each bounding sphere
+    std::vector<T> nx, ny, nz, edge_on;     // BoundingSphere::normal and ::edge_on
+    bool planar = false;                    // some primitive has an edge-on guard
     std::size_t count = 0;
 
     void push_back(const BoundingSphere<T>& b)
     {
         if (count % width == 0) {
-            for (std::vector<T>* v : {&cx, &cy, &cz, &reach, &far}) v->resize(v->size() + width, T(0));
+            for (std::vector<T>* v : {&cx, &cy, &cz, &reach, &far, &nx, &ny, &nz}) v->resize(v->size() + width, T(0));
+            edge_on.resize(edge_on.size() + width, T(-1));
         }
         cx[count] = b.center.x;
         cy[count] = b.center.y;
         cz[count] = b.center.z;
         reach[count] = BoundSlack<T>::reach(b);
         far[count] = BoundSlack<T>::far(b);
+        nx[count] = b.normal.x;
+        ny[count] = b.normal.y;
+        nz[count] = b.normal.z;
+        edge_on[count] = b.edge_on;
+        planar = planar || b.edge_on >= T(0);
         ++count;
     }
     template <class Prim>
@@ -247,15 +289,29 @@ auto bound_keep(const P& ux, const P& uy, const P& uz, const P& dx, const P& dy,
     return !(ll > limit) || !(uu < far);
 }
 
-// Bit i set: primitive i of lane group g may be hit by some policy; clear: certainly missed.
-template <class T>
+// Whether `Policy` needs the edge-on guard (see the header): its planar inside tests round.
+template <class Policy>
+inline constexpr bool needs_edge_on_guard_v = !std::is_same_v<Policy, accurate_policy>;
+
+// The edge-on guard on packs: keep where |d̂·n̂| <= edge_on.
+template <class T, class P>
+auto edge_on_keep(const P& dx, const P& dy, const P& dz, const P& nx, const P& ny, const P& nz, const P& edge_on)
+{
+    return rayq::detail::Lanes<T>::abs(dx * nx + dy * ny + dz * nz) <= edge_on;
+}
+
+// Bit i set: primitive i of lane group g may be hit by `Policy`; clear: certainly missed.
+template <class Policy, class T>
 inline std::uint32_t bound_candidates(const BoundFilterRay<T>& f, const BoundSoA<T>& s, std::size_t g)
 {
     using L = rayq::detail::Lanes<T>;
     using P = typename L::pack;
     const std::size_t i = g * L::width;
-    const auto keep = bound_keep<T>(P(f.origin.x) - L::load(&s.cx[i]), P(f.origin.y) - L::load(&s.cy[i]), P(f.origin.z) - L::load(&s.cz[i]),
-                                 P(f.unit_dir.x), P(f.unit_dir.y), P(f.unit_dir.z), L::load(&s.reach[i]), L::load(&s.far[i]), P(f.abs_slack));
+    const P dx(f.unit_dir.x), dy(f.unit_dir.y), dz(f.unit_dir.z);
+    auto keep = bound_keep<T>(P(f.origin.x) - L::load(&s.cx[i]), P(f.origin.y) - L::load(&s.cy[i]), P(f.origin.z) - L::load(&s.cz[i]),
+                              dx, dy, dz, L::load(&s.reach[i]), L::load(&s.far[i]), P(f.abs_slack));
+    if (needs_edge_on_guard_v<Policy> && s.planar)
+        keep = keep || edge_on_keep<T>(dx, dy, dz, L::load(&s.nx[i]), L::load(&s.ny[i]), L::load(&s.nz[i]), L::load(&s.edge_on[i]));
     return L::bits(keep) & s.live(g);
 }
 
@@ -304,16 +360,19 @@ struct RayStream {
     }
 };
 
-// Bit i set: ray i of lane group g may hit the primitive bounded by `b` under some policy.
-template <class T>
+// Bit i set: ray i of lane group g may hit the primitive bounded by `b` under `Policy`.
+template <class Policy, class T>
 inline std::uint32_t ray_candidates(const RayStream<T>& s, std::size_t g, const BoundingSphere<T>& b)
 {
     using L = rayq::detail::Lanes<T>;
     using P = typename L::pack;
     const std::size_t i = g * L::width;
     const T reach = BoundSlack<T>::reach(b), far = BoundSlack<T>::far(b);
-    const auto keep = bound_keep<T>(L::load(&s.ox[i]) - P(b.center.x), L::load(&s.oy[i]) - P(b.center.y), L::load(&s.oz[i]) - P(b.center.z),
-                                    L::load(&s.dx[i]), L::load(&s.dy[i]), L::load(&s.dz[i]), P(reach), P(far), L::load(&s.abs_slack[i]));
+    const P dx = L::load(&s.dx[i]), dy = L::load(&s.dy[i]), dz = L::load(&s.dz[i]);
+    auto keep = bound_keep<T>(L::load(&s.ox[i]) - P(b.center.x), L::load(&s.oy[i]) - P(b.center.y), L::load(&s.oz[i]) - P(b.center.z),
+                              dx, dy, dz, P(reach), P(far), L::load(&s.abs_slack[i]));
+    if (needs_edge_on_guard_v<Policy> && b.edge_on >= T(0))
+        keep = keep || edge_on_keep<T>(dx, dy, dz, P(b.normal.x), P(b.normal.y), P(b.normal.z), P(b.edge_on));
     return L::bits(keep) & s.live(g);
 }
 
@@ -327,7 +386,7 @@ void each_candidate(Policy, const RayStream<scalar_t<Prim>>& rays, const Prim& p
     const BoundingSphere<T> b = bounding_sphere(prim);
     for (std::size_t g = 0; g < rays.groups(); ++g) {
         std::uint32_t m = rays.live(g);
-        if constexpr (bound_filter_exact_v<Policy, Prim>) m = ray_candidates(rays, g, b);
+        if constexpr (bound_filter_exact_v<Policy, Prim>) m = ray_candidates<Policy>(rays, g, b);
         for (; m != 0; m &= m - 1) visit(g * RayStream<T>::width + static_cast<std::size_t>(rayq::detail::lowest_bit(m)));
     }
 }

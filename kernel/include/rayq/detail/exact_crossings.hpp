@@ -305,9 +305,22 @@ inline Crossings<scalar_t<Prim>> exact_curved_crossings(const Ray<scalar_t<Prim>
     each_length(scaled, length_unit);
     length_unit(r.origin);
     for (T* x : {&r.direction.x, &r.direction.y, &r.direction.z}) exact = exact && scale_exactly(*x, -kd);
-    for (T* x : {&r.tmin, &r.tmax}) exact = exact && scale_exactly(*x, kd - kl);
+    // A window end that overflows when scaled (tmax = DBL_MAX for a tiny primitive, scaled up by
+    // 2^115: found by the fuzz harnesses' scene invariant, where the unscaled fallback underflowed
+    // and the scene's narrowed window got another answer) becomes ±inf: it is then at least
+    // 2^1024 in the new unit, beyond every root whose scaled value is finite, and the roots that
+    // are not finite fall back below.
+    const auto scale_end = [&](T& x) {
+        const T y = std::ldexp(x, kd - kl);
+        if (std::isinf(y) && std::isfinite(x)) x = y;
+        else exact = exact && scale_exactly(x, kd - kl);
+    };
+    scale_end(r.tmin);
+    scale_end(r.tmax);
     if (!exact) return exact_curved_crossings_unscaled(ray, prim, axial, capped, ends, limit);
     Crossings<T> out = exact_curved_crossings_unscaled(r, scaled, axial, capped, ends, limit);
+    for (const Crossing<T>& c : out)
+        if (!std::isfinite(c.t)) return exact_curved_crossings_unscaled(ray, prim, axial, capped, ends, limit);
     for (Crossing<T>& c : out.item) {
         c.t = std::ldexp(c.t, kl - kd);  // exact unless subnormal or beyond the largest float
         if (!(c.t > ray.tmin)) c.t = next_up(ray.tmin);
