@@ -25,7 +25,9 @@
 // for a sliver): a line nearly in the plane and far beside the primitive can be "hit". The fuzz
 // harnesses' scene and stream invariants found such a hit on a float sliver triangle (κ ≈ 3e7).
 // Bounding that distance by the slack above gives: keep every lane with
-// sin θ = |d̂·n̂| ≤ 40·√ε·κ (about 1.4% of rays for κ = 1 in float, 6e-7 in double).
+// sin θ = |d̂·n̂| ≤ 40·√ε·κ: 1.6% of random rays on an equilateral float triangle (κ = 1.15), and
+// every ray once κ passes ~70 in float or ~2e6 in double (the bound is not tight: a finer error
+// analysis of the Cramer numerators would filter slivers).
 //
 // Not filtered (bound_filter_exact_v is false; the batch paths run the scalar loop): cylinders and
 // cones under `fast` and `stable`. Their textbook roots lose everything when the quadratic's
