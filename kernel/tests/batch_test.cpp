@@ -247,8 +247,8 @@ TYPED_TEST(BatchTest, FilterNeverDropsAHit)
 
 // Slivers seen edge-on: triangles and parallelograms of aspect up to 10/ε, and lines nearly in their
 // plane passing beside them. fast and stable then decide inside on rounding noise and may report a
-// hit far from the primitive (the fuzz harnesses found one on a float sliver); the filter's edge-on
-// guard must keep every such lane, in both batch patterns.
+// hit far from the primitive (the fuzz harnesses found one on a float sliver); the filter's plane
+// test must keep every such lane, in both batch patterns.
 TYPED_TEST(BatchTest, FilterKeepsSliversSeenEdgeOn)
 {
     using T = typename TypeParam::T;

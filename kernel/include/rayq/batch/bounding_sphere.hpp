@@ -17,17 +17,16 @@
 // (Ray Tracing Gems ch. 7). No window test: a policy's t may err far more than its point near a
 // flat part seen edge-on.
 //
-// Triangles and parallelograms seen nearly edge-on are kept too (BoundingSphere::edge_on). `fast`
-// and `stable` decide inside with Cramer's numerators (Möller–Trumbore), each erring by a few ε of
-// |q|·|d|·|e|, against the determinant det = −d·(e0 × e1) = |d|·|e0 × e1|·sin θ. Once these errors
-// are not small against det, the point the test accepts lies up to ~γ·(|q| + |e|)·κ/sin θ from
-// the primitive within its plane, κ = |e0|·|e1|/|e0 × e1| (1.15 for an equilateral triangle, huge
-// for a sliver): a line nearly in the plane and far beside the primitive can be "hit". The fuzz
-// harnesses' scene and stream invariants found such a hit on a float sliver triangle (κ ≈ 3e7).
-// Bounding that distance by the slack above gives: keep every lane with
-// sin θ = |d̂·n̂| ≤ 40·√ε·κ: 1.6% of random rays on an equilateral float triangle (κ = 1.15), and
-// every ray once κ passes ~70 in float or ~2e6 in double (the bound is not tight: a finer error
-// analysis of the Cramer numerators would filter slivers).
+// Triangles and parallelograms get a second, wider test under `fast` and `stable`
+// (BoundingSphere::plane_slack). These decide inside with Cramer's numerators (Möller–Trumbore),
+// each erring by at most g = 16ε of |q|·|d|·|e| (q = o − corner), against the determinant
+// det = −d·(e0 × e1) = |d|·|e0 × e1|·s, s = |d̂·n̂| the sine of the ray's angle to the plane. The
+// exact crossing X of a line they accept is therefore within ~6g·κ·(|q| + |e|)/s of the primitive
+// (≤ 36g·κ·(|o − c| + R)/s), κ = |e0|·|e1|/|e0 × e1| (1.15 for an equilateral triangle, huge for a
+// sliver), and X lies on the line: a lane is dropped only if also s·(ℓ − R) > a·(|o − c| + R),
+// a = 576ε·κ (ℓ the line's distance from c). Without it a line nearly in the plane and far beside
+// the primitive can be "hit": the fuzz harnesses' scene and stream invariants found such a hit on
+// a float sliver triangle (κ ≈ 3e7).
 //
 // Not filtered (bound_filter_exact_v is false; the batch paths run the scalar loop): cylinders and
 // cones under `fast` and `stable`. Their textbook roots lose everything when the quadratic's
@@ -66,8 +65,8 @@ struct BoundingSphere {
                // filter's Kε·|c| slack for the rounding of the center)
     T fine;    // the primitive's smallest nonzero length (radius, edge, axis): where its own
                // arithmetic may underflow (BoundSlack)
-    Vec3<T> normal{};  // a planar (Cramer) primitive's unit normal, else zero
-    T edge_on = -1;    // lanes with |d̂·normal| <= edge_on are kept under fast and stable (header)
+    Vec3<T> normal{};    // a planar (Cramer) primitive's unit normal, else zero
+    T plane_slack = -1;  // its a = 576ε·κ (at most 1: every lane), else negative (header)
 };
 
 }  // namespace rayq::batch
@@ -99,22 +98,17 @@ Vec3<double> wide(const Vec3<T>& v) { return {double(v.x), double(v.y), double(v
 
 inline double norm2(const Vec3<double>& v) { return std::sqrt(dot(v, v)); }
 
-// The edge-on guard of a primitive whose inside test solves o + t·d = corner + α·e0 + β·e1 by
-// Cramer's rule (see the header): n̂ and 40·√ε·κ, plus a few ε for the rounding of n̂ and of the
-// lane's d̂·n̂; 2 (every lane) when that reaches 1 or κ is not finite.
+// The plane test's n̂ and a = 576ε·κ for a primitive whose inside test solves
+// o + t·d = corner + α·e0 + β·e1 by Cramer's rule (see the header). From a = 1 on (or a κ that is
+// not finite) every lane is kept, since s·(ℓ − R) ≤ |o − c| always.
 template <class T>
-void set_edge_on(batch::BoundingSphere<T>& b, const Vec3<double>& e0, const Vec3<double>& e1)
+void set_plane_slack(batch::BoundingSphere<T>& b, const Vec3<double>& e0, const Vec3<double>& e1)
 {
     const Vec3<double> n = cross(e0, e1);
     const double area = norm2(n), kappa = norm2(e0) * norm2(e1) / area;
-    const double eps = std::numeric_limits<T>::epsilon();
-    const double limit = 40 * std::sqrt(eps) * kappa + 16 * eps;
-    if (!(limit < 1)) {
-        b.edge_on = T(2);
-        return;
-    }
-    b.normal = {static_cast<T>(n.x / area), static_cast<T>(n.y / area), static_cast<T>(n.z / area)};
-    b.edge_on = static_cast<T>(limit);
+    const double a = 576 * std::numeric_limits<T>::epsilon() * kappa;
+    b.plane_slack = a < 1 ? static_cast<T>(a) : T(1);
+    if (area > 0) b.normal = {static_cast<T>(n.x / area), static_cast<T>(n.y / area), static_cast<T>(n.z / area)};
 }
 
 }  // namespace rayq::detail
@@ -137,7 +131,7 @@ BoundingSphere<T> bounding_sphere(const Triangle<T>& t)
     const Vec3<double> m = (a + b + c) / 3.0;
     BoundingSphere<T> bound = detail::to_bound<T>(m, std::max({detail::norm2(a - m), detail::norm2(b - m), detail::norm2(c - m)}),
                                                   detail::smallest_nonzero({detail::norm2(b - a), detail::norm2(c - b), detail::norm2(a - c)}));
-    detail::set_edge_on(bound, b - a, c - a);  // the edges planar_coordinates solves with
+    detail::set_plane_slack(bound, b - a, c - a);  // the edges planar_coordinates solves with
     return bound;
 }
 
@@ -148,7 +142,7 @@ BoundingSphere<T> bounding_sphere(const Parallelogram<T>& p)
     const Vec3<double> m = detail::wide(p.corner) + (e0 + e1) * 0.5;
     BoundingSphere<T> bound = detail::to_bound<T>(m, 0.5 * std::max(detail::norm2(e0 + e1), detail::norm2(e0 - e1)),
                                                   detail::smallest_nonzero({detail::norm2(e0), detail::norm2(e1)}));
-    detail::set_edge_on(bound, e0, e1);
+    detail::set_plane_slack(bound, e0, e1);
     return bound;
 }
 
@@ -230,15 +224,15 @@ template <class T>
 struct BoundSoA {
     static constexpr int width = rayq::detail::Lanes<T>::width;
     std::vector<T> cx, cy, cz, reach, far;  // BoundSlack::reach and ::far of each bounding sphere
-    std::vector<T> nx, ny, nz, edge_on;     // BoundingSphere::normal and ::edge_on
-    bool planar = false;                    // some primitive has an edge-on guard
+    std::vector<T> nx, ny, nz, plane_slack;  // BoundingSphere::normal and ::plane_slack
+    bool planar = false;                     // some primitive has a plane test
     std::size_t count = 0;
 
     void push_back(const BoundingSphere<T>& b)
     {
         if (count % width == 0) {
             for (std::vector<T>* v : {&cx, &cy, &cz, &reach, &far, &nx, &ny, &nz}) v->resize(v->size() + width, T(0));
-            edge_on.resize(edge_on.size() + width, T(-1));
+            plane_slack.resize(plane_slack.size() + width, T(-1));
         }
         cx[count] = b.center.x;
         cy[count] = b.center.y;
@@ -248,8 +242,8 @@ struct BoundSoA {
         nx[count] = b.normal.x;
         ny[count] = b.normal.y;
         nz[count] = b.normal.z;
-        edge_on[count] = b.edge_on;
-        planar = planar || b.edge_on >= T(0);
+        plane_slack[count] = b.plane_slack;
+        planar = planar || b.plane_slack >= T(0);
         ++count;
     }
     template <class Prim>
@@ -277,30 +271,38 @@ struct BoundFilterRay : SphereFilterRay<T> {
     }
 };
 
+// A planar primitive's unit normal and plane slack, as packs (the plane test, see the header).
+template <class P>
+struct PlanePacks {
+    P nx, ny, nz, slack;
+};
+
 // The one test both patterns share, on packs P of T (or on T itself, the one-lane fallback): may
 // some policy hit a primitive whose bounding sphere has center offset u = o − c and widened
 // radius `reach`, along unit direction d? NaN and overflow keep a lane (the scalar path decides).
+// With `plane`, also keep lanes the plane test keeps: drop only if
+// s²·(ℓ² − 2·reach²) > 4a²·(|u|² + reach²), which implies s·(ℓ − reach) > a·(|u| + reach)
+// ((x + y)² ≤ 2x² + 2y² twice), without a square root per lane.
 template <class T, class P>
 auto bound_keep(const P& ux, const P& uy, const P& uz, const P& dx, const P& dy, const P& dz, const P& reach, const P& far,
-                const P& abs_slack)
+                const P& abs_slack, const PlanePacks<P>* plane = nullptr)
 {
     const P uu = ux * ux + uy * uy + uz * uz;
     const P ud = ux * dx + uy * dy + uz * dz;
     const P ll = uu - ud * ud;  // squared distance from the center to the line
-    const P limit = P(BoundSlack<T>::widen + BoundSlack<T>::relative) * (reach * reach) + P(BoundSlack<T>::relative) * uu + abs_slack;
-    return !(ll > limit) || !(uu < far);
+    const P rr = reach * reach;
+    const P limit = P(BoundSlack<T>::widen + BoundSlack<T>::relative) * rr + P(BoundSlack<T>::relative) * uu + abs_slack;
+    auto keep = !(ll > limit) || !(uu < far);
+    if (plane) {
+        const P s = dx * plane->nx + dy * plane->ny + dz * plane->nz;
+        keep = keep || !(s * s * (ll - P(2) * rr) > P(4) * plane->slack * plane->slack * (uu + rr));
+    }
+    return keep;
 }
 
-// Whether `Policy` needs the edge-on guard (see the header): its planar inside tests round.
+// Whether `Policy` needs the plane test (see the header): its planar inside tests round.
 template <class Policy>
-inline constexpr bool needs_edge_on_guard_v = !std::is_same_v<Policy, accurate_policy>;
-
-// The edge-on guard on packs: keep where |d̂·n̂| <= edge_on.
-template <class T, class P>
-auto edge_on_keep(const P& dx, const P& dy, const P& dz, const P& nx, const P& ny, const P& nz, const P& edge_on)
-{
-    return rayq::detail::Lanes<T>::abs(dx * nx + dy * ny + dz * nz) <= edge_on;
-}
+inline constexpr bool needs_plane_test_v = !std::is_same_v<Policy, accurate_policy>;
 
 // Bit i set: primitive i of lane group g may be hit by `Policy`; clear: certainly missed.
 template <class Policy, class T>
@@ -310,10 +312,11 @@ inline std::uint32_t bound_candidates(const BoundFilterRay<T>& f, const BoundSoA
     using P = typename L::pack;
     const std::size_t i = g * L::width;
     const P dx(f.unit_dir.x), dy(f.unit_dir.y), dz(f.unit_dir.z);
-    auto keep = bound_keep<T>(P(f.origin.x) - L::load(&s.cx[i]), P(f.origin.y) - L::load(&s.cy[i]), P(f.origin.z) - L::load(&s.cz[i]),
-                              dx, dy, dz, L::load(&s.reach[i]), L::load(&s.far[i]), P(f.abs_slack));
-    if (needs_edge_on_guard_v<Policy> && s.planar)
-        keep = keep || edge_on_keep<T>(dx, dy, dz, L::load(&s.nx[i]), L::load(&s.ny[i]), L::load(&s.nz[i]), L::load(&s.edge_on[i]));
+    PlanePacks<P> plane;
+    const bool planar = needs_plane_test_v<Policy> && s.planar;
+    if (planar) plane = {L::load(&s.nx[i]), L::load(&s.ny[i]), L::load(&s.nz[i]), L::load(&s.plane_slack[i])};
+    const auto keep = bound_keep<T>(P(f.origin.x) - L::load(&s.cx[i]), P(f.origin.y) - L::load(&s.cy[i]), P(f.origin.z) - L::load(&s.cz[i]),
+                                    dx, dy, dz, L::load(&s.reach[i]), L::load(&s.far[i]), P(f.abs_slack), planar ? &plane : nullptr);
     return L::bits(keep) & s.live(g);
 }
 
@@ -371,10 +374,10 @@ inline std::uint32_t ray_candidates(const RayStream<T>& s, std::size_t g, const 
     const std::size_t i = g * L::width;
     const T reach = BoundSlack<T>::reach(b), far = BoundSlack<T>::far(b);
     const P dx = L::load(&s.dx[i]), dy = L::load(&s.dy[i]), dz = L::load(&s.dz[i]);
-    auto keep = bound_keep<T>(L::load(&s.ox[i]) - P(b.center.x), L::load(&s.oy[i]) - P(b.center.y), L::load(&s.oz[i]) - P(b.center.z),
-                              dx, dy, dz, P(reach), P(far), L::load(&s.abs_slack[i]));
-    if (needs_edge_on_guard_v<Policy> && b.edge_on >= T(0))
-        keep = keep || edge_on_keep<T>(dx, dy, dz, P(b.normal.x), P(b.normal.y), P(b.normal.z), P(b.edge_on));
+    const PlanePacks<P> plane{P(b.normal.x), P(b.normal.y), P(b.normal.z), P(b.plane_slack)};
+    const bool planar = needs_plane_test_v<Policy> && b.plane_slack >= T(0);
+    const auto keep = bound_keep<T>(L::load(&s.ox[i]) - P(b.center.x), L::load(&s.oy[i]) - P(b.center.y), L::load(&s.oz[i]) - P(b.center.z),
+                                    dx, dy, dz, P(reach), P(far), L::load(&s.abs_slack[i]), planar ? &plane : nullptr);
     return L::bits(keep) & s.live(g);
 }
 
