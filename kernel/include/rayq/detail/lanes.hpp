@@ -9,7 +9,6 @@
 #pragma once
 
 #include <cstdint>
-#include <limits>
 
 #if !defined(RAYQ_NO_STD_SIMD) && defined(__has_include)
 #if __has_include(<experimental/simd>)
@@ -29,22 +28,15 @@ struct Lanes {
     using pack = std::experimental::native_simd<T>;
     using mask = typename pack::mask_type;
     static constexpr int width = static_cast<int>(pack::size());
-    static_assert(width <= 32 && width <= std::numeric_limits<T>::digits, "lane masks are uint32 bits, summed exactly in T");
 
     static pack load(const T* p) { return pack(p, std::experimental::element_aligned); }
     static pack abs(const pack& v) { return std::experimental::abs(v); }
     static bool none(const mask& m) { return std::experimental::none_of(m); }
-    // Lane i -> bit i: the lanes' weights 2^i selected by the mask and summed (exactly) — a blend and a log2(width) reduction, where a
-    // loop over the lanes cost ~6 instructions per lane (issue 7).
-    static std::uint32_t bits(const mask& m)
+    static std::uint32_t bits(const mask& m)  // lane i -> bit i
     {
-        pack selected(T(0));
-        std::experimental::where(m, selected) = weights();
-        return static_cast<std::uint32_t>(std::experimental::reduce(selected));
-    }
-    static pack weights()
-    {
-        return pack([](auto i) { return T(static_cast<std::uint32_t>(1u) << static_cast<int>(i)); });
+        std::uint32_t b = 0;
+        for (int i = 0; i < width; ++i) b |= static_cast<std::uint32_t>(static_cast<bool>(m[i])) << i;
+        return b;
     }
 };
 
