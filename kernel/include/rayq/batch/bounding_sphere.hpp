@@ -46,6 +46,7 @@
 
 #include "../cone.hpp"
 #include "../cylinder.hpp"
+#include "../detail/bounded.hpp"
 #include "../detail/lanes.hpp"
 #include "../disk.hpp"
 #include "../hit.hpp"
@@ -93,9 +94,6 @@ inline double smallest_nonzero(std::initializer_list<double> lengths)
     return m;
 }
 
-template <class T>
-Vec3<double> wide(const Vec3<T>& v) { return {double(v.x), double(v.y), double(v.z)}; }
-
 inline double norm2(const Vec3<double>& v) { return std::sqrt(dot(v, v)); }
 
 // The plane test's n̂ and a = 576ε·κ for a primitive whose inside test solves
@@ -121,13 +119,13 @@ BoundingSphere<T> bounding_sphere(const Sphere<T>& s) { return {s.center, s.radi
 template <class T>
 BoundingSphere<T> bounding_sphere(const Disk<T>& d)
 {
-    return detail::to_bound<T>(detail::wide(d.center), double(d.radius), double(d.radius));
+    return detail::to_bound<T>(detail::lift<double>(d.center), double(d.radius), double(d.radius));
 }
 
 template <class T>
 BoundingSphere<T> bounding_sphere(const Triangle<T>& t)
 {
-    const Vec3<double> a = detail::wide(t.a), b = detail::wide(t.b), c = detail::wide(t.c);
+    const Vec3<double> a = detail::lift<double>(t.a), b = detail::lift<double>(t.b), c = detail::lift<double>(t.c);
     const Vec3<double> m = (a + b + c) / 3.0;
     BoundingSphere<T> bound = detail::to_bound<T>(m, std::max({detail::norm2(a - m), detail::norm2(b - m), detail::norm2(c - m)}),
                                                   detail::smallest_nonzero({detail::norm2(b - a), detail::norm2(c - b), detail::norm2(a - c)}));
@@ -138,8 +136,8 @@ BoundingSphere<T> bounding_sphere(const Triangle<T>& t)
 template <class T>
 BoundingSphere<T> bounding_sphere(const Parallelogram<T>& p)
 {
-    const Vec3<double> e0 = detail::wide(p.edge0), e1 = detail::wide(p.edge1);
-    const Vec3<double> m = detail::wide(p.corner) + (e0 + e1) * 0.5;
+    const Vec3<double> e0 = detail::lift<double>(p.edge0), e1 = detail::lift<double>(p.edge1);
+    const Vec3<double> m = detail::lift<double>(p.corner) + (e0 + e1) * 0.5;
     BoundingSphere<T> bound = detail::to_bound<T>(m, 0.5 * std::max(detail::norm2(e0 + e1), detail::norm2(e0 - e1)),
                                                   detail::smallest_nonzero({detail::norm2(e0), detail::norm2(e1)}));
     detail::set_plane_slack(bound, e0, e1);
@@ -150,7 +148,7 @@ BoundingSphere<T> bounding_sphere(const Parallelogram<T>& p)
 template <class T>
 BoundingSphere<T> axial_bound(const Vec3<T>& p0, const Vec3<T>& p1, T r0, T r1)
 {
-    const Vec3<double> a = detail::wide(p0), b = detail::wide(p1);
+    const Vec3<double> a = detail::lift<double>(p0), b = detail::lift<double>(p1);
     const double half = 0.5 * detail::norm2(b - a), r = std::max(double(r0), double(r1));
     return detail::to_bound<T>((a + b) * 0.5, std::sqrt(half * half + r * r), detail::smallest_nonzero({2 * half, double(r0), double(r1)}));
 }
