@@ -22,7 +22,8 @@ ctest --test-dir "$build" --output-on-failure -j "$jobs" "$@"
 # Embree adapter's tests and the edge-case and replay test under ASan + UBSan (-O1), then each
 # libFuzzer harness (five primitive families, the file parsers) for RAYQ_FUZZ_SECONDS (default
 # 30) on its corpus (tools/sanitize/CMakeLists.txt). Every test of the suite thus runs under the
-# sanitizers except the edge-case test's exact-oracle samples and the tools' smoke tests.
+# sanitizers except the edge-case test's exact-oracle samples and the tools' smoke tests (of
+# those, rayq-fuzz's and rayq-demo's run there too).
 if [ "${RAYQ_SANITIZE:-1}" != 0 ]; then
   sanitize="${RAYQ_SANITIZE_BUILD_DIR:-$build-sanitize}"
   cmake -S "$root/tools/sanitize" -B "$sanitize" -G Ninja -DCMAKE_CXX_COMPILER=clang++-14 \
