@@ -217,30 +217,38 @@ struct BoundSlack {
     }
 };
 
+// The plane test's weight n̂/(2a), so that a lane computes s/2a as one dot product (zero for a
+// primitive without a plane test; a ≥ 576ε, so it stays finite).
+template <class T>
+Vec3<T> plane_weight(const BoundingSphere<T>& b)
+{
+    if (!(b.plane_slack > T(0))) return {T(0), T(0), T(0)};
+    return b.normal * (T(1) / (T(2) * b.plane_slack));
+}
+
 // Bounding spheres as structure of arrays, in whole lane groups (padding as in SphereSoA).
 template <class T>
 struct BoundSoA {
     static constexpr int width = rayq::detail::Lanes<T>::width;
     std::vector<T> cx, cy, cz, reach, far;  // BoundSlack::reach and ::far of each bounding sphere
-    std::vector<T> nx, ny, nz, plane_slack;  // BoundingSphere::normal and ::plane_slack
-    bool planar = false;                     // some primitive has a plane test
+    std::vector<T> wx, wy, wz;  // plane_weight() of each primitive (zero where it has none)
+    bool planar = false;        // some primitive has a plane test
     std::size_t count = 0;
 
     void push_back(const BoundingSphere<T>& b)
     {
         if (count % width == 0) {
-            for (std::vector<T>* v : {&cx, &cy, &cz, &reach, &far, &nx, &ny, &nz}) v->resize(v->size() + width, T(0));
-            plane_slack.resize(plane_slack.size() + width, T(-1));
+            for (std::vector<T>* v : {&cx, &cy, &cz, &reach, &far, &wx, &wy, &wz}) v->resize(v->size() + width, T(0));
         }
         cx[count] = b.center.x;
         cy[count] = b.center.y;
         cz[count] = b.center.z;
         reach[count] = BoundSlack<T>::reach(b);
         far[count] = BoundSlack<T>::far(b);
-        nx[count] = b.normal.x;
-        ny[count] = b.normal.y;
-        nz[count] = b.normal.z;
-        plane_slack[count] = b.plane_slack;
+        const Vec3<T> w = plane_weight(b);
+        wx[count] = w.x;
+        wy[count] = w.y;
+        wz[count] = w.z;
         planar = planar || b.plane_slack >= T(0);
         ++count;
     }
@@ -269,18 +277,18 @@ struct BoundFilterRay : SphereFilterRay<T> {
     }
 };
 
-// A planar primitive's unit normal and plane slack, as packs (the plane test, see the header).
+// A planar primitive's plane_weight() as packs.
 template <class P>
 struct PlanePacks {
-    P nx, ny, nz, slack;
+    P wx, wy, wz;
 };
 
 // The one test both patterns share, on packs P of T (or on T itself, the one-lane fallback): may
 // some policy hit a primitive whose bounding sphere has center offset u = o − c and widened
 // radius `reach`, along unit direction d? NaN and overflow keep a lane (the scalar path decides).
 // With `plane`, also keep lanes the plane test keeps: drop only if
-// s²·(ℓ² − 2·reach²) > 4a²·(|u|² + reach²), which implies s·(ℓ − reach) > a·(|u| + reach)
-// ((x + y)² ≤ 2x² + 2y² twice), without a square root per lane.
+// (s/2a)²·(ℓ² − 2·reach²) > |u|² + reach², which implies s·(ℓ − reach) > a·(|u| + reach)
+// ((x + y)² ≤ 2x² + 2y² twice), without a square root per lane; d̂·w = s/2a.
 template <class T, class P>
 auto bound_keep(const P& ux, const P& uy, const P& uz, const P& dx, const P& dy, const P& dz, const P& reach, const P& far,
                 const P& abs_slack, const PlanePacks<P>* plane = nullptr)
@@ -292,8 +300,8 @@ auto bound_keep(const P& ux, const P& uy, const P& uz, const P& dx, const P& dy,
     const P limit = P(BoundSlack<T>::widen + BoundSlack<T>::relative) * rr + P(BoundSlack<T>::relative) * uu + abs_slack;
     auto keep = !(ll > limit) || !(uu < far);
     if (plane) {
-        const P s = dx * plane->nx + dy * plane->ny + dz * plane->nz;
-        keep = keep || !(s * s * (ll - P(2) * rr) > P(4) * plane->slack * plane->slack * (uu + rr));
+        const P sw = dx * plane->wx + dy * plane->wy + dz * plane->wz;
+        keep = keep || !(sw * sw * (ll - P(2) * rr) > uu + rr);
     }
     return keep;
 }
@@ -312,7 +320,7 @@ inline std::uint32_t bound_candidates(const BoundFilterRay<T>& f, const BoundSoA
     const P dx(f.unit_dir.x), dy(f.unit_dir.y), dz(f.unit_dir.z);
     PlanePacks<P> plane;
     const bool planar = needs_plane_test_v<Policy> && s.planar;
-    if (planar) plane = {L::load(&s.nx[i]), L::load(&s.ny[i]), L::load(&s.nz[i]), L::load(&s.plane_slack[i])};
+    if (planar) plane = {L::load(&s.wx[i]), L::load(&s.wy[i]), L::load(&s.wz[i])};
     const auto keep = bound_keep<T>(P(f.origin.x) - L::load(&s.cx[i]), P(f.origin.y) - L::load(&s.cy[i]), P(f.origin.z) - L::load(&s.cz[i]),
                                     dx, dy, dz, L::load(&s.reach[i]), L::load(&s.far[i]), P(f.abs_slack), planar ? &plane : nullptr);
     return L::bits(keep) & s.live(g);
@@ -372,7 +380,8 @@ inline std::uint32_t ray_candidates(const RayStream<T>& s, std::size_t g, const 
     const std::size_t i = g * L::width;
     const T reach = BoundSlack<T>::reach(b), far = BoundSlack<T>::far(b);
     const P dx = L::load(&s.dx[i]), dy = L::load(&s.dy[i]), dz = L::load(&s.dz[i]);
-    const PlanePacks<P> plane{P(b.normal.x), P(b.normal.y), P(b.normal.z), P(b.plane_slack)};
+    const Vec3<T> w = plane_weight(b);
+    const PlanePacks<P> plane{P(w.x), P(w.y), P(w.z)};
     const bool planar = needs_plane_test_v<Policy> && b.plane_slack >= T(0);
     const auto keep = bound_keep<T>(L::load(&s.ox[i]) - P(b.center.x), L::load(&s.oy[i]) - P(b.center.y), L::load(&s.oz[i]) - P(b.center.z),
                                     dx, dy, dz, P(reach), P(far), L::load(&s.abs_slack[i]), planar ? &plane : nullptr);
