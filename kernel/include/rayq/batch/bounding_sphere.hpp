@@ -395,7 +395,8 @@ void each_candidate(Policy, const RayStream<scalar_t<Prim>>& rays, const Prim& p
 {
     using T = scalar_t<Prim>;
     if (!validate(prim)) return;
-    const BoundingSphere<T> b = bounding_sphere(prim);
+    [[maybe_unused]] BoundingSphere<T> b{};
+    if constexpr (bound_filter_exact_v<Policy, Prim>) b = bounding_sphere(prim);
     for (std::size_t g = 0; g < rays.groups(); ++g) {
         std::uint32_t m = rays.live(g);
         if constexpr (bound_filter_exact_v<Policy, Prim>) m = ray_candidates<Policy>(rays, g, b);
