@@ -275,7 +275,7 @@ TYPED_TEST(BatchTest, FilterKeepsSliversSeenEdgeOn)
             EXPECT_TRUE(batch::bound_candidates<Policy>(f, soa, 0) & 1u) << typeid(Prim).name() << " scene filter dropped a hit";
             batch::RayStream<T> stream;
             stream.push_back(ray);
-            EXPECT_TRUE(batch::ray_candidates<Policy>(stream, 0, b) & 1u) << typeid(Prim).name() << " stream filter dropped a hit";
+            EXPECT_TRUE(batch::ray_candidates<Policy>(stream, 0, batch::PrimitiveBound<T>(b)) & 1u) << typeid(Prim).name() << " stream filter dropped a hit";
         }
     };
     for (int i = 0; i < 200; ++i) {

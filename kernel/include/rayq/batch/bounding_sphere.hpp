@@ -126,7 +126,7 @@ bool normal_within_exact_range(const Vec3<T>& normal)
 {
     const Vec3<T> n = detail::direction_near_unit(normal);
     for (const T x : {n.x, n.y, n.z})
-        if (x != T(0) && !(std::abs(x) >= T(0x1p-64) && std::abs(x) <= T(0x1p64))) return false;
+        if (x != T(0) && !detail::within_exact_range(std::abs(x))) return false;
     return true;
 }
 
@@ -240,13 +240,29 @@ Vec3<T> plane_weight(const BoundingSphere<T>& b)
     return b.normal * (T(1) / (T(2) * b.plane_slack));
 }
 
+// What the filter needs of one primitive, computed once per primitive: its bounding sphere's
+// center, BoundSlack's reach and far, and the plane weight.
+template <class T>
+struct PrimitiveBound {
+    Vec3<T> center{};
+    T reach = T(0), far = T(0);
+    Vec3<T> w{};          // plane_weight()
+    bool planar = false;  // it has a plane test
+
+    PrimitiveBound() = default;
+    explicit PrimitiveBound(const BoundingSphere<T>& b)
+        : center(b.center), reach(BoundSlack<T>::reach(b)), far(BoundSlack<T>::far(b)), w(plane_weight(b)), planar(b.plane_slack >= T(0))
+    {
+    }
+};
+
 // Bounding spheres as structure of arrays, in whole lane groups (padding as in SphereSoA).
 template <class T>
 struct BoundSoA {
     static constexpr int width = rayq::detail::Lanes<T>::width;
-    std::vector<T> cx, cy, cz, reach, far;  // BoundSlack::reach and ::far of each bounding sphere
-    std::vector<T> wx, wy, wz;  // plane_weight() of each primitive (zero where it has none)
-    bool planar = false;        // some primitive has a plane test
+    std::vector<T> cx, cy, cz, reach, far;  // PrimitiveBound of each primitive
+    std::vector<T> wx, wy, wz;
+    bool planar = false;  // some primitive has a plane test
     std::size_t count = 0;
 
     void push_back(const BoundingSphere<T>& b)
@@ -254,16 +270,16 @@ struct BoundSoA {
         if (count % width == 0) {
             for (std::vector<T>* v : {&cx, &cy, &cz, &reach, &far, &wx, &wy, &wz}) v->resize(v->size() + width, T(0));
         }
-        cx[count] = b.center.x;
-        cy[count] = b.center.y;
-        cz[count] = b.center.z;
-        reach[count] = BoundSlack<T>::reach(b);
-        far[count] = BoundSlack<T>::far(b);
-        const Vec3<T> w = plane_weight(b);
-        wx[count] = w.x;
-        wy[count] = w.y;
-        wz[count] = w.z;
-        planar = planar || b.plane_slack >= T(0);
+        const PrimitiveBound<T> p(b);
+        cx[count] = p.center.x;
+        cy[count] = p.center.y;
+        cz[count] = p.center.z;
+        reach[count] = p.reach;
+        far[count] = p.far;
+        wx[count] = p.w.x;
+        wy[count] = p.w.y;
+        wz[count] = p.w.z;
+        planar = planar || p.planar;
         ++count;
     }
     template <class Prim>
@@ -387,18 +403,16 @@ struct RayStream {
 
 // Bit i set: ray i of lane group g may hit the primitive bounded by `b` under `Policy`.
 template <class Policy, class T>
-inline std::uint32_t ray_candidates(const RayStream<T>& s, std::size_t g, const BoundingSphere<T>& b)
+inline std::uint32_t ray_candidates(const RayStream<T>& s, std::size_t g, const PrimitiveBound<T>& b)
 {
     using L = rayq::detail::Lanes<T>;
     using P = typename L::pack;
     const std::size_t i = g * L::width;
-    const T reach = BoundSlack<T>::reach(b), far = BoundSlack<T>::far(b);
     const P dx = L::load(&s.dx[i]), dy = L::load(&s.dy[i]), dz = L::load(&s.dz[i]);
-    const Vec3<T> w = plane_weight(b);
-    const PlanePacks<P> plane{P(w.x), P(w.y), P(w.z)};
-    const bool planar = needs_plane_test_v<Policy> && b.plane_slack >= T(0);
+    const PlanePacks<P> plane{P(b.w.x), P(b.w.y), P(b.w.z)};
+    const bool planar = needs_plane_test_v<Policy> && b.planar;
     const auto keep = bound_keep<T>(L::load(&s.ox[i]) - P(b.center.x), L::load(&s.oy[i]) - P(b.center.y), L::load(&s.oz[i]) - P(b.center.z),
-                                    dx, dy, dz, P(reach), P(far), L::load(&s.abs_slack[i]), planar ? &plane : nullptr);
+                                    dx, dy, dz, P(b.reach), P(b.far), L::load(&s.abs_slack[i]), planar ? &plane : nullptr);
     return L::bits(keep) & s.live(g);
 }
 
@@ -409,8 +423,8 @@ void each_candidate(Policy, const RayStream<scalar_t<Prim>>& rays, const Prim& p
 {
     using T = scalar_t<Prim>;
     if (!validate(prim)) return;
-    [[maybe_unused]] BoundingSphere<T> b{};
-    if constexpr (bound_filter_exact_v<Policy, Prim>) b = bounding_sphere(prim);
+    [[maybe_unused]] PrimitiveBound<T> b;
+    if constexpr (bound_filter_exact_v<Policy, Prim>) b = PrimitiveBound<T>(bounding_sphere(prim));
     for (std::size_t g = 0; g < rays.groups(); ++g) {
         std::uint32_t m = rays.live(g);
         if constexpr (bound_filter_exact_v<Policy, Prim>) m = ray_candidates<Policy>(rays, g, b);

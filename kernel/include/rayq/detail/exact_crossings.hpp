@@ -249,6 +249,11 @@ inline bool scale_exactly(T& x, int k)
     return true;
 }
 
+// Magnitudes the exact expansions take as they are: a product of up to twelve factors in
+// [2^-64, 2^64] stays within double's exponent range (and float's, lifted to double).
+template <class T>
+constexpr bool within_exact_range(T magnitude) { return magnitude >= T(0x1p-64) && magnitude <= T(0x1p64); }
+
 // A normal (or any direction whose length does not matter) scaled by a power of two so that its
 // largest component is near 1, when it is far from 1 and the scaling is exact: the exact inside
 // tests square it (a disk's rim at the plane's root has |n|² in every term), and a component of
@@ -258,7 +263,7 @@ template <class T>
 inline Vec3<T> direction_near_unit(const Vec3<T>& n)
 {
     const T largest = std::max({std::abs(n.x), std::abs(n.y), std::abs(n.z)});
-    if (!(largest > T(0)) || !std::isfinite(largest) || (largest >= T(0x1p-64) && largest <= T(0x1p64))) return n;
+    if (!(largest > T(0)) || !std::isfinite(largest) || within_exact_range(largest)) return n;
     const int k = std::ilogb(largest);
     Vec3<T> scaled = n;
     const bool exact = scale_exactly(scaled.x, -k) && scale_exactly(scaled.y, -k) && scale_exactly(scaled.z, -k);
@@ -287,8 +292,7 @@ inline Crossings<scalar_t<Prim>> exact_curved_crossings(const Ray<scalar_t<Prim>
             length = std::max({length, std::abs(x.x - ray.origin.x), std::abs(x.y - ray.origin.y), std::abs(x.z - ray.origin.z)});
     });
     const T direction = std::max({std::abs(ray.direction.x), std::abs(ray.direction.y), std::abs(ray.direction.z)});
-    constexpr T lo = T(0x1p-64), hi = T(0x1p64);  // 2^±64: twelve factors stay within double's and float's (as double) range
-    const bool in_range = (length == T(0) || (length >= lo && length <= hi)) && direction >= lo && direction <= hi;
+    const bool in_range = (length == T(0) || within_exact_range(length)) && within_exact_range(direction);
     // A zero, infinite or NaN magnitude (a degenerate ray mapped into a Transformed's object
     // space) has no unit to change.
     const bool scalable = std::isfinite(length) && direction > T(0) && std::isfinite(direction);
