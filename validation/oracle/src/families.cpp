@@ -48,6 +48,9 @@ std::uint64_t fnv(const std::string& s, std::uint64_t h = 1469598103934665603ull
     return h;
 }
 
+// Every draw is its own statement or braced-list element: C++ leaves the order of function
+// arguments and of operator operands unspecified, and the fixtures must not depend on the compiler.
+// (Where a draw order had to be picked, it is the one g++ used, so the checked-in fixtures stand.)
 struct Rng {
     std::uint64_t state;
     LD uniform() { return static_cast<LD>(splitmix(state) >> 11) * 0x1p-53L; }  // [0, 1)
@@ -283,14 +286,30 @@ QuadricL random_quadric(Rng& g, int kind)
     }
     return q;
 }
-PlaneL random_plane(Rng& g) { return {g.in_ball(10), g.unit_vector() * g.log_uniform(0.5L, 2)}; }
-DiskL random_disk(Rng& g) { return {g.in_ball(10), g.unit_vector() * g.log_uniform(0.5L, 2), g.log_uniform(0.1L, 10)}; }
+PlaneL random_plane(Rng& g)
+{
+    const L3 p = g.in_ball(10);
+    const LD scale = g.log_uniform(0.5L, 2);
+    const L3 n = g.unit_vector();
+    return {p, n * scale};
+}
+DiskL random_disk(Rng& g)
+{
+    const L3 c = g.in_ball(10);
+    const LD scale = g.log_uniform(0.5L, 2);
+    const L3 n = g.unit_vector();
+    const LD r = g.log_uniform(0.1L, 10);
+    return {c, n * scale, r};
+}
 ParallelogramL random_parallelogram(Rng& g)
 {
     const LD s = g.log_uniform(0.1L, 10);
     const L3 n = g.unit_vector();
-    const L3 e0 = g.perpendicular(n) * (s * g.uniform(0.5L, 2));
-    const L3 e1 = unit(cross(n, e0) + e0 * (1 / norm(e0)) * g.uniform(-0.5L, 0.5L)) * (s * g.uniform(0.5L, 2));
+    const LD len0 = s * g.uniform(0.5L, 2);
+    const L3 e0 = g.perpendicular(n) * len0;
+    const LD len1 = s * g.uniform(0.5L, 2);
+    const LD skew = g.uniform(-0.5L, 0.5L);
+    const L3 e1 = unit(cross(n, e0) + e0 * (1 / norm(e0)) * skew) * len1;
     return {g.in_ball(10), e0, e1};
 }
 TriangleL random_triangle(Rng& g)
@@ -335,7 +354,9 @@ RayL far_ray(Rng& g, const Shape& s, const Spec& spec)
 {
     const LD size = size_of(s);
     const LD reach = size * (g.coin() ? g.uniform(0, 0.5L) : g.uniform(1.2L, 2));
-    return aim(g, center_of(s) + g.in_ball(1) * reach, g.unit_vector(), size * std::pow(10.0L, static_cast<LD>(spec.e)));
+    const L3 dir = g.unit_vector();
+    const L3 offset = g.in_ball(1);
+    return aim(g, center_of(s) + offset * reach, dir, size * std::pow(10.0L, static_cast<LD>(spec.e)));
 }
 
 L3 translation_of(Rng& g, const Spec& spec) { return g.unit_vector() * std::pow(10.0L, static_cast<LD>(spec.e)); }
@@ -353,7 +374,10 @@ Fixture sphere_case(Rng& g, const std::string& family, const Spec& spec)
     } else if (spec.cls == "far") {
         r = far_ray(g, s, spec);
     } else if (spec.cls == "inside") {
-        r = {s.c + g.in_ball(0.9L * s.r), g.unit_vector() * g.length(), 0, ld_inf};
+        const L3 o = s.c + g.in_ball(0.9L * s.r);
+        const LD len = g.length();
+        const L3 d = g.unit_vector();
+        r = {o, d * len, 0, ld_inf};
     } else if (spec.cls == "surface") {
         const L3 n = g.unit_vector();
         const L3 dir = cone_direction(g, n * static_cast<LD>(spec.side < 0 ? 1 : -1), pi / 3);
@@ -381,7 +405,11 @@ FlatFrame flat_frame(const ParallelogramL& s) { return {s.corner, unit(cross(s.e
 FlatFrame flat_frame(const TriangleL& s) { return {s.a, unit(cross(s.b - s.a, s.c - s.a))}; }
 
 // A point on (in) or just off (out) a flat shape's boundary.
-L3 rim_point(Rng& g, const PlaneL& s, const Spec&) { return s.p + g.perpendicular(s.n) * g.uniform(0, 2); }
+L3 rim_point(Rng& g, const PlaneL& s, const Spec&)
+{
+    const LD dist = g.uniform(0, 2);
+    return s.p + g.perpendicular(s.n) * dist;
+}
 L3 rim_point(Rng& g, const DiskL& s, const Spec& spec) { return s.c + g.perpendicular(s.n) * (s.r * ratio_in_out(spec)); }
 L3 rim_point(Rng& g, const ParallelogramL& s, const Spec& spec)
 {
@@ -411,9 +439,22 @@ L3 rim_point(Rng& g, const TriangleL& s, const Spec& spec)
     return s.a + (s.b - s.a) * a + (s.c - s.a) * b;
 }
 // A point well inside (or, for misses, outside) a flat shape.
-L3 inner_point(Rng& g, const PlaneL& s) { return s.p + g.perpendicular(s.n) * g.uniform(0, 2); }
-L3 inner_point(Rng& g, const DiskL& s) { return s.c + g.perpendicular(s.n) * (s.r * g.uniform(0, 0.9L)); }
-L3 inner_point(Rng& g, const ParallelogramL& s) { return s.corner + s.e0 * g.uniform(0.1L, 0.9L) + s.e1 * g.uniform(0.1L, 0.9L); }
+L3 inner_point(Rng& g, const PlaneL& s)
+{
+    const LD dist = g.uniform(0, 2);
+    return s.p + g.perpendicular(s.n) * dist;
+}
+L3 inner_point(Rng& g, const DiskL& s)
+{
+    const LD dist = s.r * g.uniform(0, 0.9L);
+    return s.c + g.perpendicular(s.n) * dist;
+}
+L3 inner_point(Rng& g, const ParallelogramL& s)
+{
+    const LD b = g.uniform(0.1L, 0.9L);
+    const LD a = g.uniform(0.1L, 0.9L);
+    return s.corner + s.e0 * a + s.e1 * b;
+}
 L3 inner_point(Rng& g, const TriangleL& s)
 {
     const LD a = g.uniform(0.05L, 0.9L), b = g.uniform(0.05L, 0.95L - a);
@@ -435,7 +476,10 @@ Fixture flat_case(Rng& g, const std::string& family, const Spec& spec, Shape s)
         const L3 target = g.coin() ? inner_point(g, s) : center_of(s) + along * (size * g.uniform(1.5L, 3));
         r = aim(g, target, dir, size * g.uniform(0.5L, 2));
     } else if (spec.cls == "rim") {
-        r = aim(g, rim_point(g, s, spec), cone_direction(g, g.coin() ? f.n : -f.n, pi / 3), size * g.uniform(1, 5));
+        const LD dist = size * g.uniform(1, 5);
+        const bool up = g.coin();
+        const L3 dir = cone_direction(g, up ? f.n : -f.n, pi / 3);
+        r = aim(g, rim_point(g, s, spec), dir, dist);
     } else if (spec.cls == "far") {
         r = far_ray(g, s, spec);
     } else if (spec.cls == "surface") {
@@ -476,7 +520,8 @@ RayL side_grazing(Rng& g, const Axial& ax, const Spec& spec)
     const LD beta = g.uniform(-pi / 8, pi / 8);
     const L3 dir = unit(w * std::cos(beta) + gen * std::sin(beta));
     const L3 target = p - n * (static_cast<LD>(spec.side) * closeness(spec) * r);
-    return aim(g, target, g.coin() ? dir : -dir, r * g.uniform(1.5L, 5));
+    const LD dist = r * g.uniform(1.5L, 5);
+    return aim(g, target, g.coin() ? dir : -dir, dist);
 }
 
 // Through a cap plane at (1 ∓ 10^-k) of its radius, heading into the slab.
@@ -486,7 +531,8 @@ RayL cap_rim(Rng& g, const Axial& ax, bool at_p1, const Spec& spec)
     const LD r = at_p1 ? ax.r1 : ax.r0;
     const L3 target = ax.at(at_p1 ? 1 : 0) + e * (r * ratio_in_out(spec));
     const L3 inward = at_p1 ? -ax.a : ax.a;
-    return aim(g, target, cone_direction(g, inward, pi / 3), std::max(r, ax.h) * g.uniform(1, 4));
+    const LD dist = std::max(r, ax.h) * g.uniform(1, 4);
+    return aim(g, target, cone_direction(g, inward, pi / 3), dist);
 }
 
 template <class T, class Shape>
@@ -512,7 +558,8 @@ Fixture axial_case(Rng& g, const std::string& family, const Spec& spec, Shape s)
             const LD tilt = spec.side > 0 ? g.uniform(0, 0.8L) * opening : g.uniform(1.5L, 4) * opening;
             const L3 dir = unit(ax.a + g.perpendicular(ax.a) * tilt);
             const L3 miss = g.perpendicular(dir) * (closeness(spec) * ax.r1);
-            r = aim(g, ax.p0 + miss, g.coin() ? dir : -dir, ax.h * g.uniform(1, 3));
+            const LD dist = ax.h * g.uniform(1, 3);
+            r = aim(g, ax.p0 + miss, g.coin() ? dir : -dir, dist);
             return fixture<T>(family, r, s);
         }
     }
@@ -533,7 +580,11 @@ Fixture axial_case(Rng& g, const std::string& family, const Spec& spec, Shape s)
         r = far_ray(g, s, spec);
     } else if (spec.cls == "inside") {
         const LD h = g.uniform(0.05L, 0.95L);
-        r = {ax.at(h) + g.perpendicular(ax.a) * (ax.radius(h) * g.uniform(0, 0.9L)), g.unit_vector() * g.length(), 0, ld_inf};
+        const LD off = ax.radius(h) * g.uniform(0, 0.9L);
+        const L3 o = ax.at(h) + g.perpendicular(ax.a) * off;
+        const LD len = g.length();
+        const L3 d = g.unit_vector();
+        r = {o, d * len, 0, ld_inf};
     } else if (spec.cls == "surface") {
         const LD h = g.uniform(0.1L, 0.9L);
         const L3 e = g.perpendicular(ax.a);
@@ -571,7 +622,9 @@ Fixture quadric_case(Rng& g, const std::string& family, const Spec& spec)
         const L3 n = unit(q.gradient(p));
         const LD small = std::min({a, b, c});
         if (spec.cls == "grazing") {
-            r = aim(g, p - n * (static_cast<LD>(spec.side) * closeness(spec) * small), g.perpendicular(n), small * g.uniform(1.5L, 5));
+            const LD dist = small * g.uniform(1.5L, 5);
+            const L3 dir = g.perpendicular(n);
+            r = aim(g, p - n * (static_cast<LD>(spec.side) * closeness(spec) * small), dir, dist);
         } else if (spec.cls == "surface") {
             const L3 dir = cone_direction(g, n * static_cast<LD>(spec.side < 0 ? 1 : -1), pi / 3);
             Fixture f = fixture<T>(family, RayL{p, dir * g.length(), 0, ld_inf}, q);
@@ -579,7 +632,10 @@ Fixture quadric_case(Rng& g, const std::string& family, const Spec& spec)
             in.ray.origin = jitter(g, in.ray.origin);
             return f;
         } else if (spec.cls == "inside") {
-            r = {q.c + (p - q.c) * g.uniform(0, 0.9L), g.unit_vector() * g.length(), 0, ld_inf};
+            const L3 o = q.c + (p - q.c) * g.uniform(0, 0.9L);
+            const LD len = g.length();
+            const L3 d = g.unit_vector();
+            r = {o, d * len, 0, ld_inf};
         } else if (spec.cls == "far") {
             r = far_ray(g, q, spec);
         } else {
@@ -593,7 +649,9 @@ Fixture quadric_case(Rng& g, const std::string& family, const Spec& spec)
             (keep_upper ? *lo[axis] : *hi[axis]) = cc[axis];
             L3 toward{0, 0, 0};
             (axis == 0 ? toward.x : axis == 1 ? toward.y : toward.z) = keep_upper ? 1 : -1;
-            r = aim(g, q.c + g.in_ball(0.3L * small), cone_direction(g, toward, pi / 4), 4 * std::max({a, b, c}));
+            const L3 dir = cone_direction(g, toward, pi / 4);
+            const L3 target = q.c + g.in_ball(0.3L * small);
+            r = aim(g, target, dir, 4 * std::max({a, b, c}));
         }
     } else throw std::invalid_argument("rayq::oracle: no family " + family + " for quadric");
     if (spec.cls == "translated") {
