@@ -32,6 +32,7 @@ struct Lanes {
     static pack load(const T* p) { return pack(p, std::experimental::element_aligned); }
     static pack abs(const pack& v) { return std::experimental::abs(v); }
     static bool none(const mask& m) { return std::experimental::none_of(m); }
+    static bool all(const mask& m) { return std::experimental::all_of(m); }
     static std::uint32_t bits(const mask& m)  // lane i -> bit i
     {
         std::uint32_t b = 0;
@@ -51,6 +52,7 @@ struct Lanes {
     static pack load(const T* p) { return *p; }
     static pack abs(const pack& v) { return v < T(0) ? -v : v; }
     static bool none(mask m) { return !m; }
+    static bool all(mask m) { return m; }
     static std::uint32_t bits(mask m) { return m ? 1u : 0u; }
 };
 
