@@ -13,9 +13,12 @@
 //   rayq_scene_<policy>   rayq's compile-time scene rayq::Scene<rayq::Sphere<float>> (or
 //                         Cylinder<float>): brute force with the SIMD sphere filter (N <= 1,000)
 //   rayq_loop_<policy>    the plain scalar loop: rayq::intersect over a std::vector (N <= 16)
+//   ..._shading           the same with HitFields::point | normal: the record Embree's native
+//                         hits give, without rayq's certified bounds
 // Counters: rays_per_second, hits (fraction of rays that hit: equal across variants up to the
 // shapes' differences), build_seconds (BVH build or scene set-up, once per benchmark, excluded
-// from the timing). Every variant builds its hit record (Embree: tfar, Ng; rayq: the full Hit).
+// from the timing). Every variant builds its hit record (Embree: tfar, Ng; rayq: the full Hit, or
+// for _shading point and normal).
 //
 // FTZ/DAZ are set for the whole run, as Embree recommends (--ftz=0: off); the rayq adapter switches them off
 // inside its callbacks (rayq's certified arithmetic needs gradual underflow), which it pays for.
@@ -308,7 +311,8 @@ void run_adapter(benchmark::State& state, const std::string& key, const std::vec
 }
 
 template <class Prim, class Policy>
-void run_scene(benchmark::State& state, const std::string& key, const std::vector<Prim>& prims, Policy policy)
+void run_scene(benchmark::State& state, const std::string& key, const std::vector<Prim>& prims, Policy policy,
+               rayq::HitFields fields = rayq::HitFields::all)
 {
     using CompileTime = rayq::Scene<Prim>;
     double build = 0;
@@ -321,7 +325,7 @@ void run_scene(benchmark::State& state, const std::string& key, const std::vecto
     for (auto _ : state) {
         hits = 0;
         for (const Ray& r : the_rays()) {
-            const auto h = rayq::intersect(policy, r, scene);
+            const auto h = rayq::intersect(policy, r, scene, fields);
             hits += h.has_value();
             benchmark::DoNotOptimize(h);
         }
@@ -331,7 +335,7 @@ void run_scene(benchmark::State& state, const std::string& key, const std::vecto
 
 // The plain scalar loop: rayq::intersect over the array, the nearest kept (first of equal t).
 template <class Prim, class Policy>
-void run_loop(benchmark::State& state, const std::vector<Prim>& prims, Policy policy)
+void run_loop(benchmark::State& state, const std::vector<Prim>& prims, Policy policy, rayq::HitFields fields = rayq::HitFields::all)
 {
     std::size_t hits = 0;
     for (auto _ : state) {
@@ -339,7 +343,7 @@ void run_loop(benchmark::State& state, const std::vector<Prim>& prims, Policy po
         for (const Ray& r : the_rays()) {
             std::optional<rayq::Hit<float>> best;
             for (const Prim& p : prims)
-                if (auto h = rayq::intersect(policy, r, p); h && (!best || h->t < best->t)) best = h;
+                if (auto h = rayq::intersect(policy, r, p, fields); h && (!best || h->t < best->t)) best = h;
             hits += best.has_value();
             benchmark::DoNotOptimize(best);
         }
@@ -356,6 +360,15 @@ const char* policy_name(Policy)
 void reg(const std::string& name, std::function<void(benchmark::State&)> fn)
 {
     benchmark::RegisterBenchmark(name.c_str(), [name, fn](benchmark::State& st) { fn(st); })->Unit(benchmark::kMillisecond);
+}
+
+// A scene asked for the record Embree's native hits give (point and normal, no certified
+// bounds): rayq_scene_<policy>_shading.
+template <class Prim, class Policy>
+void shading_scene(Policy policy, const char* prim, const std::shared_ptr<std::vector<Prim>>& prims, const std::string& tail)
+{
+    const std::string name = std::string(prim) + "/rayq_scene_" + policy_name(policy) + "_shading" + tail;
+    reg(name, [=](benchmark::State& st) { run_scene(st, name, *prims, policy, rayq::HitFields::point | rayq::HitFields::normal); });
 }
 
 void register_all()
@@ -383,12 +396,15 @@ void register_all()
                 reg(name, [=](benchmark::State& st) { run_scene(st, name, *prims, policy); });
             };
             scene(rayq::fast), scene(rayq::stable), scene(rayq::accurate);
+            shading_scene(rayq::fast, "sphere", prims, tail), shading_scene(rayq::stable, "sphere", prims, tail);
         }
         if (n <= 16) {
             const auto loop = [&](auto policy) {
                 reg(std::string("sphere/rayq_loop_") + policy_name(policy) + tail, [=](benchmark::State& st) { run_loop(st, *prims, policy); });
             };
             loop(rayq::fast), loop(rayq::stable), loop(rayq::accurate);
+            reg("sphere/rayq_loop_fast_shading" + tail,
+                [=](benchmark::State& st) { run_loop(st, *prims, rayq::fast, rayq::HitFields::point | rayq::HitFields::normal); });
         }
     }
     for (std::size_t n : {std::size_t(1), std::size_t(16)}) {
@@ -410,6 +426,7 @@ void register_all()
             reg(name, [=](benchmark::State& st) { run_scene(st, name, *prims, policy); });
         };
         scene(rayq::fast), scene(rayq::stable), scene(rayq::accurate);
+        shading_scene(rayq::fast, "cylinder", prims, tail), shading_scene(rayq::stable, "cylinder", prims, tail);
         const auto loop = [&](auto policy) {
             reg(std::string("cylinder/rayq_loop_") + policy_name(policy) + tail, [=](benchmark::State& st) { run_loop(st, *prims, policy); });
         };

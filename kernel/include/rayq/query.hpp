@@ -61,9 +61,13 @@ constexpr bool in_window(const Ray<T>& ray, T t) { return ray.tmin < t && t < ra
 
 template <class Policy, class Prim>
 inline Hit<scalar_t<Prim>> make_hit(Policy policy, const Ray<scalar_t<Prim>>& ray, const Prim& prim,
-                                     const Crossing<scalar_t<Prim>>& c)
+                                     const Crossing<scalar_t<Prim>>& c, HitFields fields = HitFields::all)
 {
     using T = scalar_t<Prim>;
+    Hit<T> h{c.t};
+    h.front_face = c.entering;
+    h.part = c.part;
+    if (fields == HitFields::t) return h;
     Vec3<T> p = detail::point_at(policy, ray.origin, ray.direction, c.t);
     // A point beyond the largest float (a ray starting near it) saturates to the nearest finite
     // value, as rounding with saturation would; its error bound below becomes infinite.
@@ -72,25 +76,30 @@ inline Hit<scalar_t<Prim>> make_hit(Policy policy, const Ray<scalar_t<Prim>>& ra
     };
     const bool saturated[3] = {std::isinf(p.x), std::isinf(p.y), std::isinf(p.z)};
     saturate(p.x), saturate(p.y), saturate(p.z);
-    Vec3<T> n = unit(outward_normal(prim, p, c.part));
-    // Face the incoming ray: outward where it enters, inward where it leaves. The side comes from
-    // the crossing (the root order; exact under the accurate policy), not from the sign of
-    // dot(n, d), which is noise at grazing incidence.
-    if (!c.entering) n = -n;
-    // A point rounded onto a degenerate spot (the center of a far sphere whose t the fast policy
-    // got wrong, a cone's apex) has no normal; the record still promises a unit one facing the ray.
-    if (n.x == T(0) && n.y == T(0) && n.z == T(0)) n = -unit(ray.direction);
-    // The promise is dot(normal, direction) <= 0 as computed in T. Where the side and the rounded
-    // normal disagree — grazing incidence, where the exact normal is nearly perpendicular to d, or a
-    // point a non-exact policy placed off the surface — the normal is reflected across the plane
-    // perpendicular to d (a flip would turn a grazing normal by ~π), nudged by an ulp while
-    // rounding keeps the sign; front_face keeps the crossing's side.
-    if (dot(n, ray.direction) > T(0)) {
-        const Vec3<T> u = unit(ray.direction);
-        for (int i = 0; i < 3 && dot(n, ray.direction) > T(0); ++i)
-            n = unit(n - (T(2) * dot(n, u) + std::numeric_limits<T>::epsilon()) * u);
-        if (dot(n, ray.direction) > T(0)) n = -n;
+    if (wants(fields, HitFields::point)) h.point = p;
+    if (wants(fields, HitFields::normal)) {
+        Vec3<T> n = unit(outward_normal(prim, p, c.part));
+        // Face the incoming ray: outward where it enters, inward where it leaves. The side comes from
+        // the crossing (the root order; exact under the accurate policy), not from the sign of
+        // dot(n, d), which is noise at grazing incidence.
+        if (!c.entering) n = -n;
+        // A point rounded onto a degenerate spot (the center of a far sphere whose t the fast policy
+        // got wrong, a cone's apex) has no normal; the record still promises a unit one facing the ray.
+        if (n.x == T(0) && n.y == T(0) && n.z == T(0)) n = -unit(ray.direction);
+        // The promise is dot(normal, direction) <= 0 as computed in T. Where the side and the rounded
+        // normal disagree — grazing incidence, where the exact normal is nearly perpendicular to d, or a
+        // point a non-exact policy placed off the surface — the normal is reflected across the plane
+        // perpendicular to d (a flip would turn a grazing normal by ~π), nudged by an ulp while
+        // rounding keeps the sign; front_face keeps the crossing's side.
+        if (dot(n, ray.direction) > T(0)) {
+            const Vec3<T> u = unit(ray.direction);
+            for (int i = 0; i < 3 && dot(n, ray.direction) > T(0); ++i)
+                n = unit(n - (T(2) * dot(n, u) + std::numeric_limits<T>::epsilon()) * u);
+            if (dot(n, ray.direction) > T(0)) n = -n;
+        }
+        h.normal = n;
     }
+    if (!wants(fields, HitFields::bounds)) return h;
     // A posteriori, independent of how t was found: bounds on F(t), F'(t) and a certify how far
     // the exact root can be (detail::certify_root). The point then errs by t_error·|d| plus the
     // rounding of o + t·d (at most two roundings: γ(2)·(|o| + |t·d|), pbrt-v4 §6.8.5).
@@ -112,10 +121,11 @@ inline Hit<scalar_t<Prim>> make_hit(Policy policy, const Ray<scalar_t<Prim>>& ra
         return grow((d == T(0) ? T(0) : root_error * std::abs(d)) + g2 * (std::abs(o) + std::abs(c.t * d)));
     };
     constexpr T inf = std::numeric_limits<T>::infinity();
-    const Vec3<T> point_error{saturated[0] ? inf : axis_error(ray.origin.x, ray.direction.x),
-                              saturated[1] ? inf : axis_error(ray.origin.y, ray.direction.y),
-                              saturated[2] ? inf : axis_error(ray.origin.z, ray.direction.z)};
-    return {c.t, p, n, c.entering, c.part, t_error, point_error};
+    h.t_error = t_error;
+    h.point_error = {saturated[0] ? inf : axis_error(ray.origin.x, ray.direction.x),
+                     saturated[1] ? inf : axis_error(ray.origin.y, ray.direction.y),
+                     saturated[2] ? inf : axis_error(ray.origin.z, ray.direction.z)};
+    return h;
 }
 
 // A crossing the window excluded (t <= tmin) whose exact root may nevertheless lie inside it:
@@ -136,10 +146,11 @@ inline bool may_enter_window(Policy, const Ray<scalar_t<Prim>>& ray, const Prim&
 // exactly lie in the window.
 template <class Policy, class Prim>
 inline Hit<scalar_t<Prim>> first_hit(Policy policy, const Ray<scalar_t<Prim>>& ray, const Prim& prim,
-                                     const Crossing<scalar_t<Prim>>& c, bool earlier_may_count)
+                                     const Crossing<scalar_t<Prim>>& c, bool earlier_may_count, HitFields fields)
 {
     using T = scalar_t<Prim>;
-    Hit<T> h = make_hit(policy, ray, prim, c);
+    Hit<T> h = make_hit(policy, ray, prim, c, fields);
+    if (!wants(fields, HitFields::bounds)) return h;
     // A first hit that leaves the surface says the window starts inside (F(tmin) < 0): if that is
     // not certain, an entering root before it may have been lost (cancellation in the fast
     // formula, a far-away primitive in float).
@@ -172,14 +183,14 @@ inline Crossings<scalar_t<Prim>> leading_crossings(Policy policy, const Ray<scal
     return crossings_up_to(policy, ray, prim, 1, 0);
 }
 
-// The t of the first crossing inside (tmin, tmax), if any: the cheap core that closest-hit
-// searches over many primitives run before building one hit record (ray and primitive already
-// accepted).
+// The first crossing inside (tmin, tmax), if any: the cheap core that closest-hit searches over
+// many primitives run before building one hit record (ray and primitive already accepted).
 template <class Policy, class Prim>
-inline std::optional<scalar_t<Prim>> first_t_in_window(Policy policy, const Ray<scalar_t<Prim>>& ray, const Prim& prim)
+inline std::optional<Crossing<scalar_t<Prim>>> first_crossing_in_window(Policy policy, const Ray<scalar_t<Prim>>& ray,
+                                                                        const Prim& prim)
 {
     for (const auto& c : leading_crossings(policy, ray, prim))
-        if (in_window(ray, c.t)) return c.t;
+        if (in_window(ray, c.t)) return c;
     return std::nullopt;
 }
 
@@ -191,14 +202,17 @@ inline bool accepts(const Ray<scalar_t<Prim>>& ray, const Prim& prim)
 
 }  // namespace detail
 
+// `fields`: which optional parts of the record to compute (HitFields; all by default).
 template <class Policy, class Prim, std::enable_if_t<is_policy_v<Policy> && is_primitive_v<Prim>, int> = 0>
-inline std::optional<Hit<scalar_t<Prim>>> intersect(Policy policy, const Ray<scalar_t<Prim>>& ray, const Prim& prim)
+inline std::optional<Hit<scalar_t<Prim>>> intersect(Policy policy, const Ray<scalar_t<Prim>>& ray, const Prim& prim,
+                                                    HitFields fields = HitFields::all)
 {
     if (!detail::accepts(ray, prim)) return std::nullopt;
     bool earlier_may_count = false;
     for (const auto& c : detail::leading_crossings(policy, ray, prim)) {
-        if (detail::in_window(ray, c.t)) return detail::first_hit(policy, ray, prim, c, earlier_may_count);
-        earlier_may_count = earlier_may_count || detail::may_enter_window(policy, ray, prim, c);
+        if (detail::in_window(ray, c.t)) return detail::first_hit(policy, ray, prim, c, earlier_may_count, fields);
+        // Only the bound needs to know whether an excluded crossing may exactly lie in the window.
+        earlier_may_count = earlier_may_count || (wants(fields, HitFields::bounds) && detail::may_enter_window(policy, ray, prim, c));
     }
     return std::nullopt;
 }
@@ -206,7 +220,7 @@ inline std::optional<Hit<scalar_t<Prim>>> intersect(Policy policy, const Ray<sca
 template <class Policy, class Prim, std::enable_if_t<is_policy_v<Policy> && is_primitive_v<Prim>, int> = 0>
 inline bool occluded(Policy policy, const Ray<scalar_t<Prim>>& ray, const Prim& prim)
 {
-    return detail::accepts(ray, prim) && detail::first_t_in_window(policy, ray, prim).has_value();
+    return detail::accepts(ray, prim) && detail::first_crossing_in_window(policy, ray, prim).has_value();
 }
 
 // One boundary crossing along the ray: the hit record and whether the ray enters the solid there
@@ -232,34 +246,35 @@ struct Passages {
 };
 
 template <class Policy, class Prim, std::enable_if_t<is_policy_v<Policy> && is_primitive_v<Prim>, int> = 0>
-inline Passages<scalar_t<Prim>> intersect_all(Policy policy, const Ray<scalar_t<Prim>>& ray, const Prim& prim)
+inline Passages<scalar_t<Prim>> intersect_all(Policy policy, const Ray<scalar_t<Prim>>& ray, const Prim& prim,
+                                              HitFields fields = HitFields::all)
 {
     Passages<scalar_t<Prim>> out;
     if (!detail::accepts(ray, prim)) return out;
     bool earlier_may_count = false;
     for (const auto& c : crossings(policy, ray, prim)) {
         if (detail::in_window(ray, c.t)) {
-            out.item[out.count] = {out.count == 0 ? detail::first_hit(policy, ray, prim, c, earlier_may_count)
-                                                  : detail::make_hit(policy, ray, prim, c),
+            out.item[out.count] = {out.count == 0 ? detail::first_hit(policy, ray, prim, c, earlier_may_count, fields)
+                                                  : detail::make_hit(policy, ray, prim, c, fields),
                                    c.entering};
             ++out.count;
         } else {
-            earlier_may_count = earlier_may_count || detail::may_enter_window(policy, ray, prim, c);
+            earlier_may_count = earlier_may_count || (wants(fields, HitFields::bounds) && detail::may_enter_window(policy, ray, prim, c));
         }
     }
     return out;
 }
 
 template <class Prim, std::enable_if_t<is_primitive_v<Prim>, int> = 0>
-inline Passages<scalar_t<Prim>> intersect_all(const Ray<scalar_t<Prim>>& ray, const Prim& prim)
+inline Passages<scalar_t<Prim>> intersect_all(const Ray<scalar_t<Prim>>& ray, const Prim& prim, HitFields fields = HitFields::all)
 {
-    return intersect_all(default_policy{}, ray, prim);
+    return intersect_all(default_policy{}, ray, prim, fields);
 }
 
 template <class Prim, std::enable_if_t<is_primitive_v<Prim>, int> = 0>
-inline std::optional<Hit<scalar_t<Prim>>> intersect(const Ray<scalar_t<Prim>>& ray, const Prim& prim)
+inline std::optional<Hit<scalar_t<Prim>>> intersect(const Ray<scalar_t<Prim>>& ray, const Prim& prim, HitFields fields = HitFields::all)
 {
-    return intersect(default_policy{}, ray, prim);
+    return intersect(default_policy{}, ray, prim, fields);
 }
 
 template <class Prim, std::enable_if_t<is_primitive_v<Prim>, int> = 0>

@@ -9,8 +9,9 @@
 // arrays for a SIMD culling filter (spheres: batch/sphere.hpp; disks, parallelograms, triangles,
 // and cylinders and cones under `accurate`: their bounding spheres, batch/bounding_sphere.hpp); a
 // type not listed is never instantiated. Closest hit
-// searches with the cheap core only (crossing t, no hit record) and builds one record, for the
-// winner, at the end; nearest() stops before that. Any-hit (occluded) returns at the first hit.
+// searches with the cheap core only (the crossing, no hit record) and builds one record, for the
+// winner, at the end, with the fields asked for (HitFields); nearest() stops before that.
+// Any-hit (occluded) returns at the first hit.
 //
 // The answers are exactly those of the scalar queries run over every primitive in order
 // (types in list order, primitives in insertion order; the first of equal t wins): a test.
@@ -101,14 +102,14 @@ struct SceneStore {
     // decides the window exactly and may report a root just inside an end as the float next to
     // it, so ties are settled by comparing t, never by the window's exclusive end.
     template <class Policy>
-    bool closest(Policy policy, Ray<T>& ray, std::optional<T>& best, std::size_t& index) const
+    bool closest(Policy policy, Ray<T>& ray, std::optional<Crossing<T>>& best, std::size_t& index) const
     {
         bool found = false;
         scan<Policy>(ray, [&](std::size_t i) {
-            const std::optional<T> t = first_t_in_window(policy, ray, items[i]);
-            if (t && (!best || *t < *best)) {
-                best = t;
-                ray.tmax = next_up(*t);
+            const std::optional<Crossing<T>> c = first_crossing_in_window(policy, ray, items[i]);
+            if (c && (!best || c->t < best->t)) {
+                best = c;
+                ray.tmax = next_up(c->t);
                 index = i;
                 found = true;
             }
@@ -120,7 +121,7 @@ struct SceneStore {
     template <class Policy>
     bool any(Policy policy, const Ray<T>& ray) const
     {
-        return scan<Policy>(ray, [&](std::size_t i) { return first_t_in_window(policy, ray, items[i]).has_value(); });
+        return scan<Policy>(ray, [&](std::size_t i) { return first_crossing_in_window(policy, ray, items[i]).has_value(); });
     }
 
 };
@@ -172,12 +173,14 @@ private:
     std::tuple<detail::SceneStore<Prims>...> stores_;
 };
 
-// The nearest hit without its record: which primitive, and t.
+// The nearest hit without its record: which primitive, t, and the crossing's part and side.
 template <class T>
 struct SceneRef {
     T t;
     int type;           // position of the primitive's type in the scene's list
     std::size_t index;  // within that type, in insertion order
+    Part part;
+    bool entering;      // the hit's front_face
 };
 
 template <class T>
@@ -194,14 +197,15 @@ inline std::optional<SceneRef<typename Scene<Prims...>::scalar_type>> nearest(
     using T = typename Scene<Prims...>::scalar_type;
     if (!usable(ray)) return std::nullopt;
     Ray<T> window = ray;
-    std::optional<T> best_t;
+    std::optional<Crossing<T>> best_crossing;
     std::optional<SceneRef<T>> best;
     std::apply(
         [&](const auto&... store) {
             int type = 0;
             const auto one = [&](const auto& s) {
                 std::size_t index = 0;
-                if (s.closest(policy, window, best_t, index)) best = SceneRef<T>{*best_t, type, index};
+                if (s.closest(policy, window, best_crossing, index))
+                    best = SceneRef<T>{best_crossing->t, type, index, best_crossing->part, best_crossing->entering};
                 ++type;
             };
             (one(store), ...);
@@ -210,12 +214,15 @@ inline std::optional<SceneRef<typename Scene<Prims...>::scalar_type>> nearest(
     return best;
 }
 
-// The full hit record of a nearest() answer (the scalar intersect() of that primitive).
+// The hit record of a nearest() answer for the same ray and scene: the scalar intersect() of that
+// primitive, with the fields asked for. Without bounds the record is built from the crossing the
+// search already found; the bounds also need the crossings before it, so they come from intersect().
 template <class Policy, class... Prims, std::enable_if_t<is_policy_v<Policy>, int> = 0>
 inline SceneHit<typename Scene<Prims...>::scalar_type> complete(Policy policy,
                                                                 const Ray<typename Scene<Prims...>::scalar_type>& ray,
                                                                 const Scene<Prims...>& scene,
-                                                                const SceneRef<typename Scene<Prims...>::scalar_type>& ref)
+                                                                const SceneRef<typename Scene<Prims...>::scalar_type>& ref,
+                                                                HitFields fields = HitFields::all)
 {
     using T = typename Scene<Prims...>::scalar_type;
     std::optional<Hit<T>> hit;
@@ -223,7 +230,10 @@ inline SceneHit<typename Scene<Prims...>::scalar_type> complete(Policy policy,
     std::apply(
         [&](const auto&... store) {
             const auto one = [&](const auto& s) {
-                if (type++ == ref.type) hit = intersect(policy, ray, s.items.at(ref.index));
+                if (type++ != ref.type) return;
+                const auto& prim = s.items.at(ref.index);
+                if (wants(fields, HitFields::bounds)) hit = intersect(policy, ray, prim, fields);
+                else hit = detail::make_hit(policy, ray, prim, Crossing<T>{ref.t, ref.part, ref.entering}, fields);
             };
             (one(store), ...);
         },
@@ -233,11 +243,12 @@ inline SceneHit<typename Scene<Prims...>::scalar_type> complete(Policy policy,
 
 template <class Policy, class... Prims, std::enable_if_t<is_policy_v<Policy>, int> = 0>
 inline std::optional<SceneHit<typename Scene<Prims...>::scalar_type>> intersect(
-    Policy policy, const Ray<typename Scene<Prims...>::scalar_type>& ray, const Scene<Prims...>& scene)
+    Policy policy, const Ray<typename Scene<Prims...>::scalar_type>& ray, const Scene<Prims...>& scene,
+    HitFields fields = HitFields::all)
 {
     const auto ref = nearest(policy, ray, scene);
     if (!ref) return std::nullopt;
-    return complete(policy, ray, scene, *ref);
+    return complete(policy, ray, scene, *ref, fields);
 }
 
 template <class Policy, class... Prims, std::enable_if_t<is_policy_v<Policy>, int> = 0>
@@ -249,9 +260,9 @@ inline bool occluded(Policy policy, const Ray<typename Scene<Prims...>::scalar_t
 
 template <class... Prims>
 inline std::optional<SceneHit<typename Scene<Prims...>::scalar_type>> intersect(
-    const Ray<typename Scene<Prims...>::scalar_type>& ray, const Scene<Prims...>& scene)
+    const Ray<typename Scene<Prims...>::scalar_type>& ray, const Scene<Prims...>& scene, HitFields fields = HitFields::all)
 {
-    return intersect(default_policy{}, ray, scene);
+    return intersect(default_policy{}, ray, scene, fields);
 }
 
 template <class... Prims>

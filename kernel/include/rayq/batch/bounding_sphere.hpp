@@ -432,13 +432,14 @@ void each_candidate(Policy, const RayStream<scalar_t<Prim>>& rays, const Prim& p
     }
 }
 
-// The stream pattern: out[i] = rayq::intersect(policy, rays.rays[i], prim), bit for bit, with
-// the filter skipping the rays that certainly miss.
+// The stream pattern: out[i] = rayq::intersect(policy, rays.rays[i], prim, fields), bit for bit,
+// with the filter skipping the rays that certainly miss.
 template <class Policy, class Prim, std::enable_if_t<has_bounding_sphere_v<Prim>, int> = 0>
-void intersect(Policy policy, const RayStream<scalar_t<Prim>>& rays, const Prim& prim, std::vector<std::optional<Hit<scalar_t<Prim>>>>& out)
+void intersect(Policy policy, const RayStream<scalar_t<Prim>>& rays, const Prim& prim, std::vector<std::optional<Hit<scalar_t<Prim>>>>& out,
+               HitFields fields = HitFields::all)
 {
     out.assign(rays.count, std::nullopt);
-    each_candidate(policy, rays, prim, [&](std::size_t i) { out[i] = rayq::intersect(policy, rays.rays[i], prim); });
+    each_candidate(policy, rays, prim, [&](std::size_t i) { out[i] = rayq::intersect(policy, rays.rays[i], prim, fields); });
 }
 
 // out[i] = rayq::occluded(policy, rays.rays[i], prim).

@@ -225,10 +225,11 @@ public:
     const RTCBounds& bounds(std::size_t primID) const { return boxes_.at(primID); }
     Policy policy() const { return policy_; }
 
-    // rayq's full hit record for primitive primID on `ray` (what the scalar intersect gives).
-    std::optional<Hit<T>> hit_record(const Ray<T>& ray, unsigned primID) const
+    // rayq's hit record for primitive primID on `ray` (what the scalar intersect gives), with the
+    // fields asked for.
+    std::optional<Hit<T>> hit_record(const Ray<T>& ray, unsigned primID, HitFields fields = HitFields::all) const
     {
-        return ::rayq::intersect(policy_, ray, primitives_.at(primID));
+        return ::rayq::intersect(policy_, ray, primitives_.at(primID), fields);
     }
 
 private:
@@ -389,11 +390,11 @@ public:
     // The closest hit, exactly as rayq's scalar loop over every primitive finds it (lowest primID
     // among equal t). Rays Embree cannot take (tmin < 0, a float copy that overflows) are answered
     // by that loop itself: correct, without culling.
-    std::optional<EmbreeHit<T>> intersect(const Ray<T>& ray) const
+    std::optional<EmbreeHit<T>> intersect(const Ray<T>& ray, HitFields fields = HitFields::all) const
     {
         const std::optional<EmbreeRef<T>> ref = nearest(ray);
         if (!ref) return std::nullopt;
-        const std::optional<Hit<T>> hit = geometry_->hit_record(ray, ref->primID);
+        const std::optional<Hit<T>> hit = geometry_->hit_record(ray, ref->primID, fields);
         if (!hit) return std::nullopt;  // unreachable: the winner's first crossing is in the window
         return EmbreeHit<T>{*hit, ref->geomID, ref->primID, ref->tfar};
     }

@@ -102,6 +102,20 @@ bool same(const Hit<T>& a, const Hit<T>& b)
            a.part == b.part && same(a.t_error, b.t_error) && same(a.point_error, b.point_error);
 }
 
+// The full record cut down to `fields`: what a query asked for only those must return (the
+// fields not asked for at their defaults: zero point and normal, infinite bounds).
+template <class T>
+Hit<T> restricted(const Hit<T>& full, HitFields fields)
+{
+    Hit<T> h{full.t};
+    h.front_face = full.front_face;
+    h.part = full.part;
+    if (wants(fields, HitFields::point)) h.point = full.point;
+    if (wants(fields, HitFields::normal)) h.normal = full.normal;
+    if (wants(fields, HitFields::bounds)) h.t_error = full.t_error, h.point_error = full.point_error;
+    return h;
+}
+
 inline const char* part_name(Part p) { return p == Part::surface ? "surface" : p == Part::cap0 ? "cap0" : "cap1"; }
 
 template <class T>
@@ -263,6 +277,20 @@ void check_policy(Policy policy, const char* name, const Ray<scalar_t<Prim>>& ra
     else if (hit && (!same(scene_hit->hit, *hit) || scene_hit->index != 0))
         v.push_back({"scene.agrees", p + ": scene hit " + describe(scene_hit->hit) + " index " + std::to_string(scene_hit->index) +
                                          " differs from scalar " + describe(*hit)});
+    // Fewer fields, the same answer: the scalar and the scene queries asked for t alone, or for the
+    // point and normal without the bounds (the scene then builds the record from the crossing its
+    // search found), give the full record's values in those fields and the defaults elsewhere.
+    for (const HitFields fields : {HitFields::t, HitFields::point | HitFields::normal}) {
+        const std::string f = fields == HitFields::t ? " (fields t)" : " (fields point|normal)";
+        const auto part = intersect(policy, ray, prim, fields);
+        const auto scene_part = intersect(policy, ray, scene, fields);
+        if (part.has_value() != hit.has_value() || (hit && !same(*part, restricted(*hit, fields))))
+            v.push_back({"fields.agree", p + f + ": intersect " + (part ? "hit " + describe(*part) : std::string("missed")) +
+                                             ", full record " + (hit ? describe(*hit) : std::string("missed"))});
+        if (scene_part.has_value() != hit.has_value() || (hit && (!same(scene_part->hit, restricted(*hit, fields)) || scene_part->index != 0)))
+            v.push_back({"fields.scene_agrees", p + f + ": scene " + (scene_part ? "hit " + describe(scene_part->hit) : std::string("missed")) +
+                                                    ", full record " + (hit ? describe(*hit) : std::string("missed"))});
+    }
     const bool scene_occ = occluded(policy, ray, scene);
     if (scene_occ != occ)
         v.push_back({"scene.occluded_agrees", p + ": scene occluded = " + (scene_occ ? "true" : "false") + ", scalar " + (occ ? "true" : "false")});
