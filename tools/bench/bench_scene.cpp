@@ -4,7 +4,8 @@
 // and triangles, float and double:
 //   loop     the scalar intersect()/occluded() over an array, keeping the nearest hit;
 //   scene    rayq::Scene<...> (compile-time type list, SIMD culling filters, one hit record);
-//   variant  a runtime-dispatched scene: std::vector<std::variant<...>> + std::visit.
+//   variant  a runtime-dispatched scene: std::vector<std::variant<...>> + std::visit;
+//   scene_long_d  spheres: the scene on rays whose directions are not unit (target − origin, length ~3–5).
 // Names: <query>/<prim>/<type>/<policy>/<variant>/<N>. items_per_second is ray–primitive tests
 // per second (rays × N); "hits" the fraction of rays that hit something. Rays start outside the
 // scene's box and aim at random points inside it; primitives are random, ~1% of the box each.
@@ -18,6 +19,7 @@
 #include <cmath>
 #include <random>
 #include <string>
+#include <type_traits>
 #include <variant>
 #include <vector>
 
@@ -70,7 +72,7 @@ void make(rayq::Triangle<T>& s, const rayq::Vec3<T>& c, double r, std::mt19937_6
 // N primitives in the cube [-1, 1]³ with size ~ N^(-1/3)/4 (so rays meet a few of them at every
 // N), rays from a sphere of radius 4 at points of the cube.
 template <class Prim>
-Setup<Prim> setup(std::size_t n)
+Setup<Prim> setup(std::size_t n, bool long_directions = false)
 {
     using T = rayq::scalar_t<Prim>;
     std::mt19937_64 rng(0x5CE4E000 + n);
@@ -87,7 +89,8 @@ Setup<Prim> setup(std::size_t n)
     for (std::size_t i = 0; i < kRays; ++i) {
         rayq::Vec3<double> o{g(rng), g(rng), g(rng)};
         o = o * (4.0 / rayq::length(o));
-        const rayq::Vec3<double> target{u(rng), u(rng), u(rng)}, d = rayq::normalize(target - o);
+        const rayq::Vec3<double> target{u(rng), u(rng), u(rng)};
+        const rayq::Vec3<double> d = long_directions ? target - o : rayq::normalize(target - o);
         s.rays.push_back({{T(o.x), T(o.y), T(o.z)}, {T(d.x), T(d.y), T(d.z)}});
     }
     return s;
@@ -110,13 +113,18 @@ bool loop_any(Policy p, const rayq::Ray<T>& ray, const std::vector<Prim>& prims)
     return false;
 }
 
-enum class Variant { loop, scene, variant };
-constexpr const char* variant_name(Variant v) { return v == Variant::loop ? "loop" : v == Variant::scene ? "scene" : "variant"; }
+// scene_long_d: the scene on the same rays with directions target − origin (length ~3–5, as
+// callers who do not normalize pass them) instead of unit ones.
+enum class Variant { loop, scene, variant, scene_long_d };
+constexpr const char* variant_name(Variant v)
+{
+    return v == Variant::loop ? "loop" : v == Variant::scene ? "scene" : v == Variant::variant ? "variant" : "scene_long_d";
+}
 
 template <class T, class Policy, class Prim>
 void run(benchmark::State& state, Policy p, Variant v, bool closest, std::size_t n)
 {
-    const Setup<Prim> s = setup<Prim>(n);
+    const Setup<Prim> s = setup<Prim>(n, v == Variant::scene_long_d);
     const std::vector<Prim>& prims = s.prims;
     rayq::Scene<rayq::Sphere<T>, rayq::Cylinder<T>, rayq::Cone<T>, rayq::Triangle<T>> scene;
     std::vector<std::variant<rayq::Sphere<T>, rayq::Cylinder<T>, rayq::Cone<T>, rayq::Triangle<T>>> dynamic;
@@ -129,7 +137,7 @@ void run(benchmark::State& state, Policy p, Variant v, bool closest, std::size_t
             std::size_t index = 0;
             if (v == Variant::loop) {
                 hit = closest ? loop_closest(p, ray, prims, index) : loop_any(p, ray, prims);
-            } else if (v == Variant::scene) {
+            } else if (v == Variant::scene || v == Variant::scene_long_d) {
                 if (closest) {
                     const auto h = rayq::intersect(p, ray, scene);
                     hit = h.has_value();
@@ -162,8 +170,9 @@ void run(benchmark::State& state, Policy p, Variant v, bool closest, std::size_t
 template <class T, class Policy, class Prim>
 void add(const char* prim_name, Policy p)
 {
-    for (Variant v : {Variant::loop, Variant::scene, Variant::variant})
+    for (Variant v : {Variant::loop, Variant::scene, Variant::variant, Variant::scene_long_d})
         for (bool closest : {true, false})
+            if (v != Variant::scene_long_d || std::is_same_v<Prim, rayq::Sphere<T>>)  // spheres: enough to compare
             for (std::size_t n : {std::size_t(1), std::size_t(16), std::size_t(1024)}) {
                 const std::string name = std::string(closest ? "closest" : "any") + "/" + prim_name + "/" + type_name<T>() + "/" +
                                          policy_name(p) + "/" + variant_name(v) + "/" + std::to_string(n);
