@@ -78,6 +78,7 @@ struct SceneStore {
     template <class Policy, class Visit>
     bool scan(const Ray<T>& ray, Visit visit) const
     {
+        if (items.empty()) return false;  // a listed type with no primitives costs no filter set-up
         if constexpr (sphere || batch::bound_filter_exact_v<Policy, Prim>) {
             using Filter = std::conditional_t<sphere, batch::SphereFilterRay<T>, batch::BoundFilterRay<T>>;
             const Filter f(ray);
