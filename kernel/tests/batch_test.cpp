@@ -4,7 +4,6 @@
 // batch patterns (one ray against many primitives in a Scene, many rays against one primitive)
 // answer exactly what the scalar queries answer, bit for bit, for every policy and type.
 #include <bitset>
-#include <cstring>
 #include <functional>
 #include <random>
 #include <tuple>
@@ -157,9 +156,6 @@ using Bounded = std::tuple<Disk<T>, Triangle<T>, Parallelogram<T>, Cylinder<T>, 
 
 template <class F, class... Prims>
 void each_type(F f, std::tuple<Prims...>*) { (f(static_cast<Prims*>(nullptr)), ...); }
-
-template <class T>
-bool same_bits(const T& a, const T& b) { return std::memcmp(&a, &b, sizeof(T)) == 0; }
 
 template <class T>
 void expect_same(const std::optional<Hit<T>>& a, const std::optional<Hit<T>>& b)

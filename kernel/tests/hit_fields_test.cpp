@@ -1,7 +1,6 @@
 // HitFields: a query asked for fewer fields computes the same t, part and side, the same values in
 // the fields asked for, and leaves the others at their documented defaults — for every primitive
 // kind, policy and type, through intersect, intersect_all and a scene.
-#include <cstring>
 #include <random>
 
 #include <rayq/scene.hpp>
@@ -14,9 +13,6 @@ namespace {
 template <class C>
 class HitFieldsTest : public ::testing::Test {};
 TYPED_TEST_SUITE(HitFieldsTest, AllConfigs, ConfigNames);
-
-template <class T>
-bool same_bits(const T& a, const T& b) { return std::memcmp(&a, &b, sizeof(T)) == 0; }
 
 constexpr HitFields kSubsets[] = {HitFields::t,
                                   HitFields::point,

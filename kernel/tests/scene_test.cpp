@@ -3,7 +3,6 @@
 // on the rays that stress a culling filter (near tangency far away, where the fast policy's
 // discriminant is noise; tiny and huge directions; windows that end just before a hit).
 #include <bitset>
-#include <cstring>
 #include <random>
 
 #include <rayq/scene.hpp>
@@ -83,9 +82,6 @@ void brute(Policy p, const Ray<T>& ray, const std::vector<Prim>& prims, int type
     for (std::size_t i = 0; i < prims.size(); ++i)
         if (const auto h = intersect(p, ray, prims[i]); h && (!best || h->t < best->hit.t)) best = SceneHit<T>{*h, type, i};
 }
-
-template <class T>
-bool same_bits(const T& a, const T& b) { return std::memcmp(&a, &b, sizeof(T)) == 0; }
 
 template <class T>
 void expect_same_hit(const Hit<T>& a, const Hit<T>& b)

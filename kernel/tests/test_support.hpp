@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <optional>
 #include <string>
@@ -38,6 +39,10 @@ Vec3<T> v3(double x, double y, double z) { return {T(x), T(y), T(z)}; }
 
 template <class T>
 Ray<T> ray(Vec3<T> o, Vec3<T> d, T tmin = T(0), T tmax = std::numeric_limits<T>::infinity()) { return {o, d, tmin, tmax}; }
+
+// The same bits (so -0 differs from +0 and a NaN equals itself): answers that must agree exactly.
+template <class T>
+bool same_bits(const T& a, const T& b) { return std::memcmp(&a, &b, sizeof(T)) == 0; }
 
 // Tolerance for analytic checks: a few ulps of the problem's scale.
 template <class T>
