@@ -66,7 +66,7 @@ inline InputCheck decode_input(Harness h, const std::vector<std::uint8_t>& bytes
 inline InputCheck check_input(Harness h, const std::vector<std::uint8_t>& bytes, Options options)
 {
     InputCheck out;
-    options.scene_copies = 1 + (bytes.empty() ? 0 : bytes.back() % 9);
+    options.scene_copies = scene_copies_for(bytes.data(), bytes.size());
     decode(h, bytes.data(), bytes.size(), [&](const auto& c) {
         out.checked = check(c.ray, c.prim, options);
         describe_case(h, c, out);

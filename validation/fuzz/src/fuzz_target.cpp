@@ -21,7 +21,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     constexpr rayq::fuzz::Harness harness = rayq::fuzz::Harness::RAYQ_FUZZ_HARNESS;
     rayq::fuzz::decode<harness>(data, size, [&](const auto& c) {
         rayq::fuzz::Options options;
-        options.scene_copies = 1 + (size > 0 ? data[size - 1] % 9 : 0);  // bounded primitives: odd and even SIMD tails
+        options.scene_copies = rayq::fuzz::scene_copies_for(data, size);
         const rayq::fuzz::Checked checked = rayq::fuzz::check(c.ray, c.prim, options);
         if (checked.violations.empty()) return;
         std::fprintf(stderr, "rayq-fuzz: %zu invariant(s) violated (%s, construction %s):\n%s",

@@ -10,6 +10,11 @@
 // origin on or near the surface, direction near a tangent, near-parallel to a plane or an axis,
 // through a rim, an edge, a corner or an apex, a window that ends at the hit. A short input
 // reads zeros past its end, so every byte string decodes to some case.
+//
+// Every read is its own statement, declarator or braced-list element: C++ leaves the order of
+// function arguments and of an operator's operands unspecified, and g++ and clang differ, so a
+// stored input (a libFuzzer crash found under clang) decoded to another case under g++. The order
+// kept is the source order, clang's.
 #pragma once
 
 #include <algorithm>
@@ -131,7 +136,11 @@ struct Frame {
     {
         return {T(x * scale + offset.x), T(y * scale + offset.y), T(z * scale + offset.z)};
     }
-    Vec3<T> point(ByteReader& in) const { return point(2 * in.signed_unit(), 2 * in.signed_unit(), 2 * in.signed_unit()); }
+    Vec3<T> point(ByteReader& in) const
+    {
+        const double x = 2 * in.signed_unit(), y = 2 * in.signed_unit(), z = 2 * in.signed_unit();
+        return point(x, y, z);
+    }
     Vec3<T> vector(ByteReader& in) const
     {
         return {T(2 * in.signed_unit() * scale), T(2 * in.signed_unit() * scale), T(2 * in.signed_unit() * scale)};
@@ -249,7 +258,8 @@ bool rim_point(const Cylinder<T>& c, ByteReader& in, Rim& r)
 {
     const auto axis = wide(c.p1) - wide(c.p0);
     r.normal = axis;
-    r.point = (in.byte() % 2 ? wide(c.p1) : wide(c.p0)) + perpendicular(axis, 6.283185307179586 * in.unit()) * (long double)c.radius;
+    const bool end1 = in.byte() % 2;
+    r.point = (end1 ? wide(c.p1) : wide(c.p0)) + perpendicular(axis, 6.283185307179586 * in.unit()) * (long double)c.radius;
     return true;
 }
 template <class T>
@@ -352,8 +362,10 @@ Case<Prim> make_case(const Prim& prim, ByteReader& in)
     };
     // An aimed ray: from 2–10 sizes away through a point near the center.
     const auto aimed = [&](const char* name) {
-        const Vec3<long double> target = center + random_dir() * (size * (long double)in.unit());
-        const Vec3<long double> dir = random_dir() * dir_scale();
+        const Vec3<long double> toward = random_dir();
+        const Vec3<long double> target = center + toward * (size * (long double)in.unit());
+        const Vec3<long double> unit_dir = random_dir();
+        const Vec3<long double> dir = unit_dir * dir_scale();
         const long double back = size * (2 + 8 * (long double)in.unit()) / length(dir);
         return Case<Prim>{ray_through<T>(target, dir, back), prim, name};
     };
@@ -369,7 +381,10 @@ Case<Prim> make_case(const Prim& prim, ByteReader& in)
         }
         return false;
     };
-    const auto signed_tiny = [&](int kmax) { return (long double)((in.byte() & 1) ? 1 : -1) * (long double)in.tiny(kmax); };
+    const auto signed_tiny = [&](int kmax) {
+        const long double sign = (in.byte() & 1) ? 1 : -1;
+        return sign * (long double)in.tiny(kmax);
+    };
     const int kmax = std::is_same_v<T, float> ? 7 : 15;
 
     switch (selector % 9) {
@@ -398,8 +413,10 @@ Case<Prim> make_case(const Prim& prim, ByteReader& in)
         if (!surface(p, n)) return aimed("aimed");
         const Vec3<long double> un = n / length(n);
         const Vec3<long double> tangent = perpendicular(un, 6.283185307179586 * in.unit());
-        const Vec3<long double> d = (tangent + un * signed_tiny(kmax)) * dir_scale();
-        const Vec3<long double> target = p + un * (signed_tiny(kmax) * size * (long double)((in.byte() & 1) ? 1 : 0));
+        const Vec3<long double> skewed = tangent + un * signed_tiny(kmax);
+        const Vec3<long double> d = skewed * dir_scale();
+        const long double lift = signed_tiny(kmax);
+        const Vec3<long double> target = p + un * (lift * size * (long double)((in.byte() & 1) ? 1 : 0));
         return {ray_through<T>(target, d, size * (1 + 4 * (long double)in.unit()) / length(d)), prim, "tangent"};
     }
     case 4: {  // through a rim, edge, corner or apex, a hair inside or outside
@@ -411,7 +428,10 @@ Case<Prim> make_case(const Prim& prim, ByteReader& in)
         if (in.byte() & 1 && length(outward) > 0) target = target + outward * signed_tiny(kmax);
         Vec3<long double> d = random_dir();
         if (in.byte() & 1) d = d + un * (long double)(in.byte() & 1 ? 2 : -2);  // through the rim's plane
-        if (in.byte() % 4 == 0) d = perpendicular(un, 6.283185307179586 * in.unit()) + un * signed_tiny(kmax);  // along it
+        if (in.byte() % 4 == 0) {  // along it
+            const Vec3<long double> along = perpendicular(un, 6.283185307179586 * in.unit());
+            d = along + un * signed_tiny(kmax);
+        }
         d = d * dir_scale();
         return {ray_through<T>(target, d, size * (1 + 4 * (long double)in.unit()) / length(d)), prim, "rim"};
     }
@@ -440,7 +460,10 @@ Case<Prim> make_case(const Prim& prim, ByteReader& in)
         return c;
     }
     case 7: {  // origin inside (near the center), going anywhere; window any numbers
-        Ray<T> r{narrow<T>(center + random_dir() * (size * 0.1L * (long double)in.unit())), narrow<T>(random_dir() * dir_scale())};
+        const Vec3<long double> toward = random_dir();
+        const Vec3<T> origin = narrow<T>(center + toward * (size * 0.1L * (long double)in.unit()));
+        const Vec3<long double> unit_dir = random_dir();
+        Ray<T> r{origin, narrow<T>(unit_dir * dir_scale())};
         if (in.byte() & 1) r.tmin = any_number<T>(in);
         if (in.byte() & 1) r.tmax = any_number<T>(in);
         return {r, prim, "inside"};
@@ -449,7 +472,8 @@ Case<Prim> make_case(const Prim& prim, ByteReader& in)
         Case<Prim> c = aimed("aimed-hostile");
         T* fields[] = {&c.ray.origin.x, &c.ray.origin.y, &c.ray.origin.z, &c.ray.direction.x, &c.ray.direction.y,
                        &c.ray.direction.z, &c.ray.tmin, &c.ray.tmax};
-        *fields[in.byte() % 8] = any_number<T>(in);
+        const T hostile = any_number<T>(in);  // read first: C++17 sequences an assignment's right side first
+        *fields[in.byte() % 8] = hostile;
         return c;
     }
     }
@@ -490,7 +514,10 @@ Parallelogram<T> decode_parallelogram(ByteReader& in)
     const Frame<T> f = Frame<T>::read(in);
     const Vec3<T> corner = f.point(in), e0 = f.vector(in);
     Vec3<T> e1 = f.vector(in);
-    if (in.byte() < 32) e1 = e0 * T(1 + in.tiny(7)) + Vec3<T>{T(in.tiny(7) * f.scale), 0, 0};  // a sliver
+    if (in.byte() < 32) {  // a sliver
+        const T stretch = T(1 + in.tiny(7));
+        e1 = e0 * stretch + Vec3<T>{T(in.tiny(7) * f.scale), 0, 0};
+    }
     return {corner, e0, e1};
 }
 template <class T>
@@ -500,7 +527,10 @@ Triangle<T> decode_triangle(ByteReader& in)
     const Frame<T> f = Frame<T>::read(in);
     const Vec3<T> a = f.point(in), b = f.point(in);
     Vec3<T> c = f.point(in);
-    if (in.byte() < 32) c = a + (b - a) * T(in.unit()) + Vec3<T>{0, T(in.tiny(7) * f.scale), 0};  // a sliver
+    if (in.byte() < 32) {  // a sliver
+        const T along = T(in.unit());
+        c = a + (b - a) * along + Vec3<T>{0, T(in.tiny(7) * f.scale), 0};
+    }
     return {a, b, c};
 }
 template <class T>
@@ -545,8 +575,12 @@ Quadric<T> decode_quadric(ByteReader& in)
     const T a = f.positive(in), b = f.positive(in), cc = f.positive(in), h = f.positive(in) * 2;
     Quadric<T> q;
     switch (kind % 7) {
-    case 0: q = Quadric<T>::ellipsoid(c, Vec3<T>{a, b, cc}, Vec3<T>{T(in.signed_unit()), T(in.signed_unit()), T(1)},
-                                      Vec3<T>{T(1), T(in.signed_unit()), T(in.signed_unit())}); break;
+    case 0: {
+        const Vec3<T> axis_x{T(in.signed_unit()), T(in.signed_unit()), T(1)};
+        const Vec3<T> axis_y{T(1), T(in.signed_unit()), T(in.signed_unit())};
+        q = Quadric<T>::ellipsoid(c, Vec3<T>{a, b, cc}, axis_x, axis_y);
+        break;
+    }
     case 1: q = Quadric<T>::elliptic_paraboloid(c, a, b, cc, h); break;
     case 2: q = Quadric<T>::hyperboloid_one_sheet(c, a, b, cc, h); break;
     case 3: q = Quadric<T>::hyperboloid_two_sheets(c, a, b, cc, h); break;
@@ -578,9 +612,13 @@ Affine3<T> decode_affine(ByteReader& in)
     }
     const Frame<T> f = Frame<T>::read(in);
     const Vec3<T> axis{T(in.signed_unit()), T(in.signed_unit()), T(in.signed_unit() + 0.01)};
-    m = Affine3<T>::rotation(axis, T(3.14159 * in.signed_unit()), f.point(in));
+    const T angle = T(3.14159 * in.signed_unit());
+    m = Affine3<T>::rotation(axis, angle, f.point(in));
     if (kind % 3 != 0) {  // anisotropic scaling, sometimes extreme
-        const auto s = [&] { return T((in.byte() < 32 ? in.tiny(kind % 2 ? 6 : 3) : 0.2 + 2 * in.unit()) * (in.byte() & 1 ? -1 : 1)); };
+        const auto s = [&] {
+            const double magnitude = in.byte() < 32 ? in.tiny(kind % 2 ? 6 : 3) : 0.2 + 2 * in.unit();
+            return T(magnitude * (in.byte() & 1 ? -1 : 1));
+        };
         m = m * Affine3<T>::scaling(Vec3<T>{s(), s(), s()});
     }
     if (kind % 5 == 0) m.m[0][1] += T(in.signed_unit());  // a shear
