@@ -18,6 +18,9 @@
 
 namespace rayq::batch {
 
+template <class T>
+struct SphereFilterRay;
+
 // Spheres as structure of arrays, in whole lane groups; the last group is padded with zeros
 // (finite, so no lane computes NaN) and live() masks the padding out.
 template <class T>
@@ -34,7 +37,10 @@ struct SphereSoA {
         cx[count] = s.center.x;
         cy[count] = s.center.y;
         cz[count] = s.center.z;
-        r[count] = s.radius;
+        // Beyond the range where the policies' products stay finite: kept by every comparison.
+        const T huge = SphereFilterRay<T>::huge;
+        const T c1 = std::abs(s.center.x) + std::abs(s.center.y) + std::abs(s.center.z);
+        r[count] = std::abs(s.radius) < huge && c1 < huge ? s.radius : std::numeric_limits<T>::infinity();
         ++count;
     }
     std::size_t groups() const { return cx.size() / width; }
@@ -58,6 +64,8 @@ struct SphereFilterRay {
     {
         const T len = length(ray.direction);
         inv_len = T(1) / len;
+        const T o1 = std::abs(ray.origin.x) + std::abs(ray.origin.y) + std::abs(ray.origin.z);
+        extreme = !(len < huge && o1 < huge);
         origin = ray.origin;
         unit_dir = ray.direction * inv_len;
         // Products that underflow err by at most denorm_min/2 absolutely; in the scalar
@@ -75,6 +83,15 @@ struct SphereFilterRay {
     // forms): K = 256 unit roundoffs covers it with a wide margin, plus the filter's own ≤ 8ε·|u|².
     static constexpr int k_slack = 256;
     static inline const T sqrt_k_min = std::sqrt(T(k_slack) * std::numeric_limits<T>::min()) * T(1.001);
+    // The rounding argument holds while the policies' products stay finite: at most
+    // |d|²·(|u|² + r²) (fast's b² and a·c, stable's |d|²·(r² − ℓ²)), within a factor 4. Where they
+    // overflow a policy may report a hit anywhere (stable's discriminant overflowed and put a hit
+    // at t = 0: fixtures/fuzz/sphere/crash-stable-overflow-scene-drops-hit). With |d|, |o|₁, |c|₁
+    // and r below H = 2^((max_exponent − 8)/4) those products stay below 5H⁴ ≤ max/16, so a ray
+    // with a longer |d| or |o|₁ keeps every lane, and a sphere with a larger |c|₁ or r is stored
+    // with an infinite radius, which every comparison below keeps (no test per lane).
+    static inline const T huge = std::ldexp(T(1), (std::numeric_limits<T>::max_exponent - 8) / 4);
+    bool extreme;     // |d| or |o|₁ at least `huge`: keep every lane
 };
 
 // Bit i set: sphere i of lane group g may be hit in (tmin, tmax) by some policy; clear: it is
@@ -87,6 +104,7 @@ inline std::uint32_t sphere_candidates(const SphereFilterRay<T>& f, T tmin, T tm
     constexpr T eps = std::numeric_limits<T>::epsilon();
     const T k_eps = T(SphereFilterRay<T>::k_slack) * eps;
     const T sqrt_k_eps = std::sqrt(k_eps);
+    if (f.extreme) return s.live(g);
     const std::size_t i = g * L::width;
     const P r = L::load(&s.r[i]);
     const P ux = P(f.origin.x) - L::load(&s.cx[i]);
