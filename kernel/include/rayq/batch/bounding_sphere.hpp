@@ -218,7 +218,7 @@ struct BoundSlack {
     // lengths outside the range or a center beyond it.
     static T reach(const BoundingSphere<T>& b)
     {
-        const T c1 = std::abs(b.center.x) + std::abs(b.center.y) + std::abs(b.center.z);
+        const T c1 = norm1(b.center);
         if (outside(b.radius) || outside(b.fine) || !(c1 < huge)) return std::numeric_limits<T>::infinity();
         return b.radius + k_eps * (b.radius + c1);
     }
@@ -300,9 +300,8 @@ struct BoundFilterRay : SphereFilterRay<T> {
 
     explicit BoundFilterRay(const Ray<T>& ray) : SphereFilterRay<T>(ray)
     {
-        const T o1 = std::abs(ray.origin.x) + std::abs(ray.origin.y) + std::abs(ray.origin.z);
-        const T ko1 = BoundSlack<T>::k_eps * o1;
-        const bool extreme = !(o1 < BoundSlack<T>::huge) || BoundSlack<T>::outside(T(1) / this->inv_len);
+        const T ko1 = BoundSlack<T>::k_eps * this->o1;
+        const bool extreme = !(this->o1 < BoundSlack<T>::huge) || BoundSlack<T>::outside(T(1) / this->inv_len);
         abs_slack = extreme ? std::numeric_limits<T>::infinity() : T(34) * ko1 * ko1 + this->line_slack_abs;
     }
 };

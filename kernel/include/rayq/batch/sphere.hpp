@@ -21,6 +21,10 @@ namespace rayq::batch {
 template <class T>
 struct SphereFilterRay;
 
+// |v|₁, the filters' bound on a point's coordinates.
+template <class T>
+inline T norm1(const Vec3<T>& v) { return std::abs(v.x) + std::abs(v.y) + std::abs(v.z); }
+
 // Spheres as structure of arrays, in whole lane groups; the last group is padded with zeros
 // (finite, so no lane computes NaN) and live() masks the padding out.
 template <class T>
@@ -39,8 +43,7 @@ struct SphereSoA {
         cz[count] = s.center.z;
         // Beyond the range where the policies' products stay finite: kept by every comparison.
         const T huge = SphereFilterRay<T>::huge;
-        const T c1 = std::abs(s.center.x) + std::abs(s.center.y) + std::abs(s.center.z);
-        r[count] = std::abs(s.radius) < huge && c1 < huge ? s.radius : std::numeric_limits<T>::infinity();
+        r[count] = std::abs(s.radius) < huge && norm1(s.center) < huge ? s.radius : std::numeric_limits<T>::infinity();
         ++count;
     }
     std::size_t groups() const { return cx.size() / width; }
@@ -59,12 +62,13 @@ struct SphereFilterRay {
     T inv_len;        // 1/|d|: t is measured in units of d
     T line_slack_abs; // absolute slack on ℓ² − r² for underflow (see below)
     T t_slack_abs;
+    T o1;             // |o|₁
 
     explicit SphereFilterRay(const Ray<T>& ray)
     {
         const T len = length(ray.direction);
         inv_len = T(1) / len;
-        const T o1 = std::abs(ray.origin.x) + std::abs(ray.origin.y) + std::abs(ray.origin.z);
+        o1 = norm1(ray.origin);
         extreme = !(len < huge && o1 < huge);
         origin = ray.origin;
         unit_dir = ray.direction * inv_len;
