@@ -194,8 +194,8 @@ TYPED_TEST(BatchTest, BoundingSpheresHoldTheirPrimitives)
         static_cast<Bounded<T>*>(nullptr));
 }
 
-// Every primitive the policy hits is kept; most of the scattered others are culled. (Cylinders and
-// cones under fast and stable are not filtered: bound_filter_exact_v.)
+// Every primitive the policy hits in the ray's window is kept; most of the scattered others are
+// culled. (Cylinders and cones under fast and stable are not filtered: bound_filter_exact_v.)
 TYPED_TEST(BatchTest, FilterNeverDropsAHit)
 {
     using T = typename TypeParam::T;
@@ -216,11 +216,20 @@ TYPED_TEST(BatchTest, FilterNeverDropsAHit)
                     soa.push_back(p);
                 }
                 for (int k = 0; k < 120; ++k) {
-                    const Ray<T> ray = g.ray_near<T>(prims[std::size_t(k) % prims.size()], 10.0);
+                    Ray<T> ray = g.ray_near<T>(prims[std::size_t(k) % prims.size()], 10.0);
+                    if (k % 3 == 1) {  // a window that may end before, between or after the primitives
+                        ray.tmin = T(g.uniform(0, 20));
+                        ray.tmax = ray.tmin + T(g.log_uniform(1e-3, 30));
+                    } else if (k % 3 == 2) {  // a window just around the aimed-at primitive's hit
+                        if (const auto h = intersect(TypeParam::policy, ray, prims[std::size_t(k) % prims.size()])) {
+                            ray.tmin = std::nextafter(h->t, T(0));
+                            ray.tmax = std::nextafter(h->t, std::numeric_limits<T>::infinity());
+                        }
+                    }
                     if (!usable(ray)) continue;
                     const batch::BoundFilterRay<T> f(ray);
                     for (std::size_t grp = 0; grp < soa.groups(); ++grp) {
-                        const std::uint32_t m = batch::bound_candidates<std::decay_t<decltype(TypeParam::policy)>>(f, soa, grp);
+                        const std::uint32_t m = batch::bound_candidates<std::decay_t<decltype(TypeParam::policy)>>(f, ray.tmin, ray.tmax, soa, grp);
                         kept += std::bitset<32>(m).count();
                         for (int lane = 0; lane < batch::BoundSoA<T>::width; ++lane) {
                             const std::size_t i = grp * batch::BoundSoA<T>::width + std::size_t(lane);
@@ -268,7 +277,7 @@ TYPED_TEST(BatchTest, FilterKeepsSliversSeenEdgeOn)
             hits += hit;
             if (!hit) continue;
             const batch::BoundFilterRay<T> f(ray);
-            EXPECT_TRUE(batch::bound_candidates<Policy>(f, soa, 0) & 1u) << typeid(Prim).name() << " scene filter dropped a hit";
+            EXPECT_TRUE(batch::bound_candidates<Policy>(f, ray.tmin, ray.tmax, soa, 0) & 1u) << typeid(Prim).name() << " scene filter dropped a hit";
             batch::RayStream<T> stream;
             stream.push_back(ray);
             EXPECT_TRUE(batch::ray_candidates<Policy>(stream, 0, batch::PrimitiveBound<T>(b)) & 1u) << typeid(Prim).name() << " stream filter dropped a hit";

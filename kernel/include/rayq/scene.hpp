@@ -74,7 +74,8 @@ struct SceneStore {
 
     // Calls visit(i) for every primitive the ray may hit in its window, in index order, until
     // visit returns true. Bounded types: the SIMD filter skips lanes the ray certainly misses;
-    // for spheres the window is re-read per lane group, so a nearer hit narrows what it keeps.
+    // the window is re-read per lane group, so a nearer hit narrows what the sphere filter and
+    // the exact policies' bounding-sphere filter keep.
     template <class Policy, class Visit>
     bool scan(const Ray<T>& ray, Visit visit) const
     {
@@ -85,7 +86,7 @@ struct SceneStore {
             for (std::size_t g = 0; g < soa.groups(); ++g) {
                 std::uint32_t m = 0;
                 if constexpr (sphere) m = batch::sphere_candidates(f, ray.tmin, ray.tmax, soa, g);
-                else m = batch::bound_candidates<Policy>(f, soa, g);
+                else m = batch::bound_candidates<Policy>(f, ray.tmin, ray.tmax, soa, g);
                 for (; m != 0; m &= m - 1) {
                     const std::size_t i = g * decltype(soa)::width + static_cast<std::size_t>(lowest_bit(m));
                     if (valid[i] && visit(i)) return true;

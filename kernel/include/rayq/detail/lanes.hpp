@@ -9,6 +9,8 @@
 #pragma once
 
 #include <cstdint>
+#include <type_traits>
+#include <utility>
 
 #if !defined(RAYQ_NO_STD_SIMD) && defined(__has_include)
 #if __has_include(<experimental/simd>)
@@ -23,6 +25,11 @@ namespace rayq::detail {
 
 #if defined(RAYQ_HAS_STD_SIMD)
 
+template <class M, class = void>
+struct has_to_bitset : std::false_type {};
+template <class M>
+struct has_to_bitset<M, std::void_t<decltype(std::declval<const M&>().__to_bitset().to_ullong())>> : std::true_type {};
+
 template <class T>
 struct Lanes {
     using pack = std::experimental::native_simd<T>;
@@ -35,9 +42,15 @@ struct Lanes {
     static bool all(const mask& m) { return std::experimental::all_of(m); }
     static std::uint32_t bits(const mask& m)  // lane i -> bit i
     {
-        std::uint32_t b = 0;
-        for (int i = 0; i < width; ++i) b |= static_cast<std::uint32_t>(static_cast<bool>(m[i])) << i;
-        return b;
+        // libstdc++'s bitset extension is one movmsk/kmov; the lane loop is what the TS offers
+        // and GCC 12 compiles it lane by lane (4–5× the filter's time on AVX2, measured).
+        if constexpr (has_to_bitset<mask>::value) {
+            return static_cast<std::uint32_t>(m.__to_bitset().to_ullong());
+        } else {
+            std::uint32_t b = 0;
+            for (int i = 0; i < width; ++i) b |= static_cast<std::uint32_t>(static_cast<bool>(m[i])) << i;
+            return b;
+        }
     }
 };
 
