@@ -74,6 +74,14 @@ bool accurate_may_hang(const Ray<scalar_t<Prim>>& ray, const Prim& prim)
 //    answered 0x1.b2e76ep-9, the correctly rounded root; so a scene of copies let the second copy
 //    win (found by the sphere libFuzzer harness; fixtures/fuzz/open/sphere/accurate-flt-max-sphere-t-off-73-ulps).
 //    Treated as known for spheres with any length within 2^8 of the largest T;
+//  * on a double sphere whose center has a subnormal coordinate (z = -2^-1074), seen from an
+//    origin on its surface, so the origin is 2^-1074 outside it (direction length 2^-90): accurate
+//    answered t = 2^-984 with t_error = inf where the exact entry is 0x1.a477d4p-985 (0.8212·2^-984), and
+//    0x1.20b3p-985 once tmax was narrowed to that answer, so a scene of copies let the second copy
+//    win (found by the sphere libFuzzer harness;
+//    fixtures/fuzz/open/sphere/accurate-subnormal-gap-t-depends-on-window). Treated as known,
+//    with the subnormal radius above, for spheres with a nonzero radius or center or origin
+//    coordinate below sqrt(min) (a guessed class boundary: one reproducer);
 //  * on a cylinder or cone whose radius or axis is below 2^-80 of its distance from the ray's
 //    origin, or below DBL_MIN^(1/12) ~ 1.7e-26: its exact expansions (products of up to twelve
 //    factors) underflow, and a cap can be hit far outside its radius — a double cone of size 1e-39
@@ -97,10 +105,13 @@ bool accurate_known_wrong(const Ray<scalar_t<Prim>>& ray, const Prim& prim)
     if constexpr (std::is_same_v<Prim, Sphere<T>>) {
         // Lengths within 2^8 of the largest T: the class boundary is a guess from one reproducer.
         const T near_max = std::ldexp(T(1), std::numeric_limits<T>::max_exponent - 8);
-        double largest = std::abs(double(prim.radius));
+        double largest = std::abs(double(prim.radius)), smallest = largest;
         for (const Vec3<T>& v : {prim.center, ray.origin})
-            largest = std::max({largest, std::abs(double(v.x)), std::abs(double(v.y)), std::abs(double(v.z))});
-        return std::abs(prim.radius) < std::sqrt(std::numeric_limits<T>::min()) || largest >= double(near_max);
+            for (const T x : {v.x, v.y, v.z}) {
+                largest = std::max(largest, std::abs(double(x)));
+                if (x != T(0)) smallest = std::min(smallest, std::abs(double(x)));
+            }
+        return smallest < double(std::sqrt(std::numeric_limits<T>::min())) || largest >= double(near_max);
     } else if constexpr (std::is_same_v<Prim, Disk<T>>) {
         (void)ray;
         return !batch::normal_within_exact_range(prim.normal);
