@@ -23,6 +23,18 @@ TYPED_TEST_SUITE(BatchTest, AllConfigs, ConfigNames);
 
 using V = Vec3<double>;
 
+// The filters as the scene and batch::intersect call them for Prim under Policy.
+template <class Policy, class Prim, class T>
+std::uint32_t scene_candidates(const batch::BoundFilterRay<T>& f, const Ray<T>& ray, const batch::BoundSoA<T>& soa, std::size_t g)
+{
+    return batch::bound_candidates<Policy, batch::bound_test_v<Policy, Prim>>(f, ray.tmin, ray.tmax, soa, g);
+}
+template <class Policy, class Prim, class T>
+std::uint32_t stream_candidates(const batch::RayStream<T>& stream, std::size_t g, const batch::BoundingSphere<T>& b)
+{
+    return batch::ray_candidates<Policy, batch::bound_test_v<Policy, Prim>>(stream, g, batch::PrimitiveBound<T>(b));
+}
+
 // A point on a primitive's surface with two tangent directions there (double, before rounding).
 struct SurfacePoint {
     V point, t1, t2;
@@ -195,7 +207,7 @@ TYPED_TEST(BatchTest, BoundingSpheresHoldTheirPrimitives)
 }
 
 // Every primitive the policy hits in the ray's window is kept; most of the scattered others are
-// culled. (Cylinders and cones under fast and stable are not filtered: bound_filter_exact_v.)
+// culled. (Cones under fast and stable are not filtered: bound_filter_exact_v.)
 TYPED_TEST(BatchTest, FilterNeverDropsAHit)
 {
     using T = typename TypeParam::T;
@@ -203,7 +215,8 @@ TYPED_TEST(BatchTest, FilterNeverDropsAHit)
     each_type(
         [&](auto* tag) {
             using Prim = std::remove_pointer_t<decltype(tag)>;
-            if constexpr (!batch::bound_filter_exact_v<std::decay_t<decltype(TypeParam::policy)>, Prim>) return;
+            using Policy = std::decay_t<decltype(TypeParam::policy)>;
+            if constexpr (!batch::bound_filter_exact_v<Policy, Prim>) return;
             SCOPED_TRACE(typeid(Prim).name());
             std::size_t kept = 0, lanes = 0, hits = 0;
             for (int scene = 0; scene < 24; ++scene) {
@@ -229,7 +242,7 @@ TYPED_TEST(BatchTest, FilterNeverDropsAHit)
                     if (!usable(ray)) continue;
                     const batch::BoundFilterRay<T> f(ray);
                     for (std::size_t grp = 0; grp < soa.groups(); ++grp) {
-                        const std::uint32_t m = batch::bound_candidates<std::decay_t<decltype(TypeParam::policy)>>(f, ray.tmin, ray.tmax, soa, grp);
+                        const std::uint32_t m = scene_candidates<Policy, Prim>(f, ray, soa, grp);
                         kept += std::bitset<32>(m).count();
                         for (int lane = 0; lane < batch::BoundSoA<T>::width; ++lane) {
                             const std::size_t i = grp * batch::BoundSoA<T>::width + std::size_t(lane);
@@ -277,10 +290,10 @@ TYPED_TEST(BatchTest, FilterKeepsSliversSeenEdgeOn)
             hits += hit;
             if (!hit) continue;
             const batch::BoundFilterRay<T> f(ray);
-            EXPECT_TRUE(batch::bound_candidates<Policy>(f, ray.tmin, ray.tmax, soa, 0) & 1u) << typeid(Prim).name() << " scene filter dropped a hit";
+            EXPECT_TRUE((scene_candidates<Policy, Prim>(f, ray, soa, 0) & 1u)) << typeid(Prim).name() << " scene filter dropped a hit";
             batch::RayStream<T> stream;
             stream.push_back(ray);
-            EXPECT_TRUE(batch::ray_candidates<Policy>(stream, 0, batch::PrimitiveBound<T>(b)) & 1u) << typeid(Prim).name() << " stream filter dropped a hit";
+            EXPECT_TRUE((stream_candidates<Policy, Prim>(stream, 0, b) & 1u)) << typeid(Prim).name() << " stream filter dropped a hit";
         }
     };
     for (int i = 0; i < 200; ++i) {
@@ -296,6 +309,72 @@ TYPED_TEST(BatchTest, FilterKeepsSliversSeenEdgeOn)
         if (validate(par)) check(par, center, normal, along, size);
     }
     EXPECT_GT(hits, 0u);
+}
+
+// Cylinders seen along their axis, where the quadratic's leading coefficient is rounding noise:
+// lines tilted off the axis by 10^-12 .. 10^-1 radians, passing inside and beside the cylinder.
+// Every hit fast and stable report must lie within the filter's slack of the bounding sphere
+// (the header's argument), so both batch patterns keep it. The worst ratio of a hit's excess
+// over the bounding sphere (in squared distance) to the filter's slack is printed (and must stay
+// below 1).
+TYPED_TEST(BatchTest, FilterKeepsCylinderHitsAlongTheAxis)
+{
+    using T = typename TypeParam::T;
+    using Policy = std::decay_t<decltype(TypeParam::policy)>;
+    Gen g(0xB0D9 + sizeof(T));
+    std::size_t hits = 0, accurate_misses = 0;
+    double worst = -std::numeric_limits<double>::infinity();
+    for (int i = 0; i < 300; ++i) {
+        const double r = g.log_uniform(1e-2, 1e2), h = r * g.log_uniform(0.1, 100);
+        const V center = g.unit() * g.log_uniform(1e-3, 1e3), axis = g.unit();
+        const Cylinder<T> cyl{Gen::cast<T>(center - axis * (h / 2)), Gen::cast<T>(center + axis * (h / 2)), T(r),
+                              g.uniform(0, 1) < 0.5 ? Caps::both : Caps::none};
+        if (!validate(cyl)) continue;
+        const batch::BoundingSphere<T> b = batch::bounding_sphere(cyl);
+        batch::BoundSoA<T> soa;
+        soa.push_back(cyl);
+        for (int k = 0; k < 32; ++k) {
+            const V side = g.perpendicular(axis);
+            const V dir = axis + g.perpendicular(axis) * ((g.uniform(0, 1) < 0.5 ? -1.0 : 1.0) * g.log_uniform(1e-12, 1e-1));
+            const double beside = k % 2 ? 1 + (g.uniform(0, 1) < 0.5 ? -1 : 1) * g.log_uniform(1e-9, 1e-1) : g.log_uniform(0.5, 30);
+            const V at = center + side * (r * beside) - dir * (h * g.uniform(0.6, 10));
+            const Ray<T> ray{Gen::cast<T>(at), Gen::cast<T>(dir)};
+            if (!usable(ray)) continue;
+            const auto hit = intersect(TypeParam::policy, ray, cyl, HitFields::t);
+            if (!hit) continue;
+            ++hits;
+            accurate_misses += !occluded(accurate, ray, cyl);
+            // How far outside the bounding sphere the line's point at the reported t lies, in units
+            // of ℓ², against the point test's slack 2Kε·(|o − c|² + R²) + 34·(Kε·|o|₁)².
+            using W = long double;
+            const W t = hit->t;
+            W dist2 = 0, u2 = 0, o1 = 0;
+            for (int a = 0; a < 3; ++a) {
+                const W o = (&ray.origin.x)[a], d = (&ray.direction.x)[a], c = (&b.center.x)[a];
+                dist2 += (o + t * d - c) * (o + t * d - c);
+                u2 += (o - c) * (o - c);
+                o1 += std::abs(o);
+            }
+            const W k_eps = 256 * W(std::numeric_limits<T>::epsilon());
+            const W rr = W(b.radius) * W(b.radius);
+            const W slack = 2 * k_eps * (u2 + rr) + 34 * (k_eps * o1) * (k_eps * o1);
+            worst = std::max(worst, double((dist2 - rr) / slack));
+            const batch::BoundFilterRay<T> f(ray);
+            EXPECT_TRUE((scene_candidates<Policy, Cylinder<T>>(f, ray, soa, 0) & 1u)) << "scene filter dropped a hit";
+            batch::RayStream<T> stream;
+            stream.push_back(ray);
+            EXPECT_TRUE((stream_candidates<Policy, Cylinder<T>>(stream, 0, b) & 1u)) << "stream filter dropped a hit";
+            // The window test: a window just around the reported t keeps it.
+            Ray<T> around = ray;
+            around.tmin = std::nextafter(hit->t, T(0));
+            around.tmax = std::nextafter(hit->t, std::numeric_limits<T>::infinity());
+            EXPECT_TRUE((scene_candidates<Policy, Cylinder<T>>(batch::BoundFilterRay<T>(around), around, soa, 0) & 1u)) << "window test dropped a hit";
+        }
+    }
+    std::printf("cylinders along the axis, %s %s: %zu hits (%zu where accurate misses), worst (distance² from the bound − R²)/slack %.3g\n",
+                sizeof(T) == 4 ? "float" : "double", typeid(Policy).name(), hits, accurate_misses, worst);
+    EXPECT_GT(hits, 100u);
+    EXPECT_LT(worst, 1.0);
 }
 
 // Many rays against one primitive: batch::intersect / batch::occluded equal the scalar queries.

@@ -7,7 +7,7 @@
 //
 // Each listed primitive type is stored in its own arrays, and bounded ones also as structure of
 // arrays for a SIMD culling filter (spheres: batch/sphere.hpp; disks, parallelograms, triangles,
-// and cylinders and cones under `accurate`: their bounding spheres, batch/bounding_sphere.hpp); a
+// cylinders, and cones under `accurate`: their bounding spheres, batch/bounding_sphere.hpp); a
 // type not listed is never instantiated. Closest hit
 // searches with the cheap core only (the crossing, no hit record) and builds one record, for the
 // winner, at the end, with the fields asked for (HitFields); nearest() stops before that.
@@ -86,7 +86,7 @@ struct SceneStore {
             for (std::size_t g = 0; g < soa.groups(); ++g) {
                 std::uint32_t m = 0;
                 if constexpr (sphere) m = batch::sphere_candidates(f, ray.tmin, ray.tmax, soa, g);
-                else m = batch::bound_candidates<Policy>(f, ray.tmin, ray.tmax, soa, g);
+                else m = batch::bound_candidates<Policy, batch::bound_test_v<Policy, Prim>>(f, ray.tmin, ray.tmax, soa, g);
                 for (; m != 0; m &= m - 1) {
                     const std::size_t i = g * decltype(soa)::width + static_cast<std::size_t>(lowest_bit(m));
                     if (valid[i] && visit(i)) return true;

@@ -35,11 +35,23 @@
 // the primitive can be "hit": the fuzz harnesses' scene and stream invariants found such a hit on
 // a float sliver triangle (κ ≈ 3e7).
 //
-// Not filtered (bound_filter_exact_v is false; the batch paths run the scalar loop): cylinders and
-// cones under `fast` and `stable`. Their textbook roots lose everything when the quadratic's
-// leading coefficient nearly vanishes (a ray parallel to the axis or to a cone's generator), and
-// the hit they then report may lie anywhere on the line (with t_error = inf) — the fuzz harnesses'
-// scene and stream invariants found such hits half a radius away from a cone.
+// Cylinders under `fast` and `stable`: their quadratic is the norm form |u' + t·v|² = w² of the
+// projected line, u' = fl((o − p0) × A), v = fl(d × A), with a and b from the same computed v. So
+// even when v is only rounding noise (a ray parallel to the axis, where a nearly vanishes), the
+// roots are those of a line within ε·|t·d| of the true one, solved with the sphere's errors: the
+// hit's true squared distance from the axis errs by at most Kε·(|u|² + r²) (the discriminant's
+// error b² + |ac| ≤ 2a·(|u|² + r²), as for the sphere filter; Ray Tracing Gems ch. 7), and its
+// axial coordinate, from the slab's t = ((p − o)·A)/(d·A), by a few ε·|o − p|, however small
+// d·A. Its squared distance from the bound's center is thus at most R² + 2Kε·(|u|² + R²): the
+// line test (BoundTest::point) keeps every lane they hit, and a window test may use the sphere
+// filter's margin. (kernel test BatchTest.FilterKeepsCylinderHitsAlongTheAxis measures the worst
+// case at 1% of that slack.) Disks test the point at their t as well.
+//
+// Not filtered (bound_filter_exact_v is false; the batch paths run the scalar loop): cones under
+// `fast` and `stable`. Their a = |v|² − s² cancels for a ray parallel to a generator, so a, b and c
+// round as three unrelated perturbations and the far root ~ −2b/a of no nearby cone may land in
+// the slab — the fuzz harnesses' scene and stream invariants found such hits half a radius away
+// from a cone.
 #pragma once
 
 #include <algorithm>
@@ -190,16 +202,14 @@ template <class Prim>
 inline constexpr bool has_bounding_sphere_v = has_bounding_sphere<Prim>::value;
 
 template <class Prim>
-struct is_axial : std::false_type {};
+struct is_cone : std::false_type {};
 template <class T>
-struct is_axial<Cylinder<T>> : std::true_type {};
-template <class T>
-struct is_axial<Cone<T>> : std::true_type {};
+struct is_cone<Cone<T>> : std::true_type {};
 
 // Whether the bounding-sphere filter keeps every primitive `Policy` hits (see the header comment).
 template <class Policy, class Prim>
 inline constexpr bool bound_filter_exact_v =
-    has_bounding_sphere_v<Prim> && (std::is_same_v<Policy, accurate_policy> || !is_axial<Prim>::value);
+    has_bounding_sphere_v<Prim> && (std::is_same_v<Policy, accurate_policy> || !is_cone<Prim>::value);
 
 // The filter's constants (see the header comment).
 template <class T>
@@ -209,9 +219,7 @@ struct BoundSlack {
     // comparison needs no square root per lane; (|u| + R)² ≤ 2(|u|² + R²) once more.
     static constexpr T widen = T(17) / T(16);
     static constexpr T relative = T(68) * k_eps;  // 17·b² ≤ 68Kε(|u|² + R²) + 34(Kε|o|₁)²
-    // accurate: the filter's own rounding of ℓ² (≤ 8ε|u|² for ℓ² = |u|² − (u·d̂)², a few ε|u|²
-    // more for u and d̂) and of R², with the same K.
-    static constexpr T exact_widen = T(1) + k_eps;
+    static inline const T sqrt_k_eps = std::sqrt(k_eps);
     // The argument above is about rounding. Products also underflow or overflow, and then a
     // policy may report a hit anywhere (found by the fuzz harnesses' stream and scene
     // invariants): the fast and stable products of up to six lengths in T, and accurate's exact
@@ -320,16 +328,34 @@ struct BoundFilterRay : SphereFilterRay<T> {
     }
 };
 
-// The window the filter tests against, for policies that decide it exactly (see the header): the
-// ray's (tmin, tmax), narrowed as a scene finds nearer hits, and 1/|d|.
+// The window the filter tests against (see BoundTest): the ray's (tmin, tmax), narrowed as a
+// scene finds nearer hits, and 1/|d|.
 template <class P>
 struct WindowPacks {
     P tmin, tmax, inv_len, t_slack_abs;
 };
 
-// Whether the filter may use `Policy`'s exact decisions: the tight line test and the window test.
-template <class Policy>
-inline constexpr bool exact_filter_v = std::is_same_v<Policy, accurate_policy>;
+// Which test the filter may make for `Policy` on `Prim` (see the header):
+//   exact   accurate: the tight line test and a window test with Kε margins;
+//   point   fast and stable on primitives whose reported t is the one whose point they test
+//           (cylinders, disks): the line test with the √(Kε) slack, and a window test with the
+//           sphere filter's margin, since that point lies within the slack of the bound;
+//   line    fast and stable on the Cramer primitives (triangles, parallelograms), whose t may err
+//           far more than the point they test near a flat part seen edge-on: the line test and
+//           the plane test, no window test.
+enum class BoundTest { exact, point, line };
+
+template <class Prim>
+struct reports_tested_point : std::false_type {};
+template <class T>
+struct reports_tested_point<Cylinder<T>> : std::true_type {};
+template <class T>
+struct reports_tested_point<Disk<T>> : std::true_type {};
+
+template <class Policy, class Prim>
+inline constexpr BoundTest bound_test_v = std::is_same_v<Policy, accurate_policy> ? BoundTest::exact
+                                          : reports_tested_point<Prim>::value       ? BoundTest::point
+                                                                                    : BoundTest::line;
 
 // A planar primitive's plane_weight() as packs.
 template <class P>
@@ -343,44 +369,47 @@ struct PlanePacks {
 // With `plane`, also keep lanes the plane test keeps: drop only if
 // (s/2a)²·(ℓ² − 2·reach²) > |u|² + reach², which implies s·(ℓ − reach) > a·(|u| + reach)
 // ((x + y)² ≤ 2x² + 2y² twice), without a square root per lane; d̂·w = s/2a.
-// With `window` (exact policies only), the tight line test and the window test instead.
-template <class T, class P>
+// With `window`, the window test too (Test ≠ line); Test = exact uses the tight line test.
+template <class T, BoundTest Test, class P>
 RAYQ_INLINE auto bound_keep(const P& ux, const P& uy, const P& uz, const P& dx, const P& dy, const P& dz, const P& reach, const P& far,
-                const P& abs_slack, const PlanePacks<P>* plane = nullptr, const WindowPacks<P>* window = nullptr)
+                            const P& abs_slack, const PlanePacks<P>* plane, const WindowPacks<P>* window)
 {
     using S = BoundSlack<T>;
+    using L = rayq::detail::Lanes<T>;
     const P uu = ux * ux + uy * uy + uz * uz;
     const P ud = ux * dx + uy * dy + uz * dz;
     const P ll = uu - ud * ud;  // squared distance from the center to the line
     const P rr = reach * reach;
-    if (window) {
-        const P limit = P(S::exact_widen) * rr + P(S::k_eps) * uu + abs_slack;
-        const auto out_of_range = !(uu < far);  // kept whatever the tests say
+    const auto out_of_range = !(uu < far);  // kept whatever the tests say
+    if constexpr (Test == BoundTest::line) {
+        const P limit = P(S::widen + S::relative) * rr + P(S::relative) * uu + abs_slack;
+        auto keep = !(ll > limit) || out_of_range;
+        if (plane) {
+            const P sw = dx * plane->wx + dy * plane->wy + dz * plane->wz;
+            keep = keep || !(sw * sw * (ll - P(2) * rr) > uu + rr);
+        }
+        return keep;
+    } else {
+        // exact: the filter's own rounding; point: that, the discriminant's error near tangency
+        // and the tested point's rounding, all within Kε·(|u|² + R²) in units of ℓ² (header).
+        constexpr T k_line = Test == BoundTest::exact ? S::k_eps : T(2) * S::k_eps;
+        const P limit = P(T(1) + k_line) * rr + P(k_line) * uu + abs_slack;
         const auto line_far = ll > limit;
-        if (rayq::detail::Lanes<T>::all(line_far && !out_of_range)) return out_of_range;  // most lane groups of a scene
+        if (L::all(line_far && !out_of_range)) return out_of_range;  // most lane groups of a scene
         const P tc = -ud * window->inv_len;
         const P rad = reach * window->inv_len;
-        // |u| ≤ (|tc| + rad)·|d| on a kept line, so Kε of it covers tc's rounding, and of rad the
-        // correctly rounded t's last ulp.
-        const P margin = rad + P(2 * S::k_eps) * (rayq::detail::Lanes<T>::abs(tc) + rad) + window->t_slack_abs;
+        // exact: |u| ≤ (|tc| + rad)·|d| on a kept line, so Kε of it covers tc's rounding, and of
+        // rad the correctly rounded t's last ulp. point: the reported t's point is within
+        // √(Kε)·(|u| + R) of the bound, so t within that of tc ± rad, as in the sphere filter.
+        const P k = P(Test == BoundTest::exact ? T(2) * S::k_eps : S::sqrt_k_eps);
+        const P margin = rad + k * (L::abs(tc) + rad + rad) + window->t_slack_abs;
         return !(line_far || tc + margin < window->tmin || tc - margin > window->tmax) || out_of_range;
     }
-    const P limit = P(S::widen + S::relative) * rr + P(S::relative) * uu + abs_slack;
-    auto keep = !(ll > limit) || !(uu < far);
-    if (plane) {
-        const P sw = dx * plane->wx + dy * plane->wy + dz * plane->wz;
-        keep = keep || !(sw * sw * (ll - P(2) * rr) > uu + rr);
-    }
-    return keep;
 }
 
-// Whether `Policy` needs the plane test (see the header): its planar inside tests round.
-template <class Policy>
-inline constexpr bool needs_plane_test_v = !std::is_same_v<Policy, accurate_policy>;
-
 // Bit i set: primitive i of lane group g may be hit by `Policy` in (tmin, tmax); clear: certainly
-// missed.
-template <class Policy, class T>
+// missed. Test: bound_test_v<Policy, the stored primitive type>.
+template <class Policy, BoundTest Test, class T>
 inline std::uint32_t bound_candidates(const BoundFilterRay<T>& f, T tmin, T tmax, const BoundSoA<T>& s, std::size_t g)
 {
     using L = rayq::detail::Lanes<T>;
@@ -388,12 +417,12 @@ inline std::uint32_t bound_candidates(const BoundFilterRay<T>& f, T tmin, T tmax
     const std::size_t i = g * L::width;
     const P dx(f.unit_dir.x), dy(f.unit_dir.y), dz(f.unit_dir.z);
     PlanePacks<P> plane;
-    const bool planar = needs_plane_test_v<Policy> && s.planar;
+    const bool planar = Test == BoundTest::line && s.planar;
     if (planar) plane = {L::load(&s.wx[i]), L::load(&s.wy[i]), L::load(&s.wz[i])};
-    [[maybe_unused]] const WindowPacks<P> window{P(tmin), P(tmax), P(f.inv_len), P(f.t_slack_abs)};
-    const auto keep = bound_keep<T>(P(f.origin.x) - L::load(&s.cx[i]), P(f.origin.y) - L::load(&s.cy[i]), P(f.origin.z) - L::load(&s.cz[i]),
-                                    dx, dy, dz, L::load(&s.reach[i]), L::load(&s.far[i]), P(f.abs_slack), planar ? &plane : nullptr,
-                                    exact_filter_v<Policy> ? &window : nullptr);
+    const WindowPacks<P> window{P(tmin), P(tmax), P(f.inv_len), P(f.t_slack_abs)};
+    const auto keep = bound_keep<T, Test>(P(f.origin.x) - L::load(&s.cx[i]), P(f.origin.y) - L::load(&s.cy[i]),
+                                          P(f.origin.z) - L::load(&s.cz[i]), dx, dy, dz, L::load(&s.reach[i]), L::load(&s.far[i]),
+                                          P(f.abs_slack), planar ? &plane : nullptr, &window);
     return L::bits(keep) & s.live(g);
 }
 
@@ -448,7 +477,8 @@ private:
 };
 
 // Bit i set: ray i of lane group g may hit the primitive bounded by `b` under `Policy`.
-template <class Policy, class T>
+// Test: bound_test_v<Policy, the primitive's type>.
+template <class Policy, BoundTest Test, class T>
 inline std::uint32_t ray_candidates(const RayStream<T>& s, std::size_t g, const PrimitiveBound<T>& b)
 {
     using L = rayq::detail::Lanes<T>;
@@ -456,13 +486,13 @@ inline std::uint32_t ray_candidates(const RayStream<T>& s, std::size_t g, const 
     const std::size_t i = g * L::width;
     const P dx = L::load(&s.dx[i]), dy = L::load(&s.dy[i]), dz = L::load(&s.dz[i]);
     const PlanePacks<P> plane{P(b.w.x), P(b.w.y), P(b.w.z)};
-    const bool planar = needs_plane_test_v<Policy> && b.planar;
+    const bool planar = Test == BoundTest::line && b.planar;
     [[maybe_unused]] WindowPacks<P> window;
-    if constexpr (exact_filter_v<Policy>)
+    if constexpr (Test != BoundTest::line)
         window = {L::load(&s.tmin[i]), L::load(&s.tmax[i]), L::load(&s.inv_len[i]), L::load(&s.t_slack_abs[i])};
-    const auto keep = bound_keep<T>(L::load(&s.ox[i]) - P(b.center.x), L::load(&s.oy[i]) - P(b.center.y), L::load(&s.oz[i]) - P(b.center.z),
-                                    dx, dy, dz, P(b.reach), P(b.far), L::load(&s.abs_slack[i]), planar ? &plane : nullptr,
-                                    exact_filter_v<Policy> ? &window : nullptr);
+    const auto keep = bound_keep<T, Test>(L::load(&s.ox[i]) - P(b.center.x), L::load(&s.oy[i]) - P(b.center.y),
+                                          L::load(&s.oz[i]) - P(b.center.z), dx, dy, dz, P(b.reach), P(b.far), L::load(&s.abs_slack[i]),
+                                          planar ? &plane : nullptr, &window);
     return L::bits(keep) & s.live(g);
 }
 
@@ -477,7 +507,7 @@ void each_candidate(Policy, const RayStream<scalar_t<Prim>>& rays, const Prim& p
     if constexpr (bound_filter_exact_v<Policy, Prim>) b = PrimitiveBound<T>(bounding_sphere(prim));
     for (std::size_t g = 0; g < rays.groups(); ++g) {
         std::uint32_t m = rays.live(g);
-        if constexpr (bound_filter_exact_v<Policy, Prim>) m = ray_candidates<Policy>(rays, g, b);
+        if constexpr (bound_filter_exact_v<Policy, Prim>) m = ray_candidates<Policy, bound_test_v<Policy, Prim>>(rays, g, b);
         for (; m != 0; m &= m - 1) visit(g * RayStream<T>::width + static_cast<std::size_t>(rayq::detail::lowest_bit(m)));
     }
 }
