@@ -42,6 +42,22 @@ template <class Prim> struct axial : std::false_type {};
 template <class T> struct axial<Cylinder<T>> : std::true_type {};
 template <class T> struct axial<Cone<T>> : std::true_type {};
 template <class P, class T> struct axial<Transformed<P, T>> : axial<P> {};
+
+// A nonzero length or coordinate of the primitive or the ray's origin below sqrt(min): gaps
+// between the origin and the surface may then be subnormal (the reproducers' 2^-1074).
+template <class Prim>
+bool has_tiny_coordinate(const Ray<scalar_t<Prim>>& ray, const Prim& prim)
+{
+    using T = scalar_t<Prim>;
+    bool tiny = false;
+    const auto see = [&](auto x) {
+        if constexpr (std::is_same_v<decltype(x), T>)
+            tiny = tiny || (x != T(0) && std::abs(x) < std::sqrt(std::numeric_limits<T>::min()));
+    };
+    each_vec(ray.origin, see);
+    each_field(prim, see);
+    return tiny;
+}
 }  // namespace detail_known
 
 // rayq::accurate can take seconds or longer on cylinders and cones whose lengths span a huge
@@ -79,9 +95,12 @@ bool accurate_may_hang(const Ray<scalar_t<Prim>>& ray, const Prim& prim)
 //    answered t = 2^-984 with t_error = inf where the exact entry is 0x1.a477d4p-985 (0.8212·2^-984), and
 //    0x1.20b3p-985 once tmax was narrowed to that answer, so a scene of copies let the second copy
 //    win (found by the sphere libFuzzer harness;
-//    fixtures/fuzz/open/sphere/accurate-subnormal-gap-t-depends-on-window). Treated as known,
-//    with the subnormal radius above, for spheres with a nonzero radius or center or origin
-//    coordinate below sqrt(min) (a guessed class boundary: one reproducer);
+//    fixtures/fuzz/open/sphere/accurate-subnormal-gap-t-depends-on-window). The axial harness then
+//    found the same on a double cone's cap: origin z = 2^-1074 above the cap plane z = 0,
+//    direction length 2^-96, t = 2^-978 with t_error = inf, another t in a narrowed window
+//    (fixtures/fuzz/open/axial/accurate-subnormal-gap-cap-t-depends-on-window). Treated as known,
+//    with the subnormal radius above, for spheres, cylinders and cones with a nonzero length or
+//    coordinate (primitive or origin) below sqrt(min) (a guessed class boundary: two reproducers);
 //  * on a cylinder or cone whose radius or axis is below 2^-80 of its distance from the ray's
 //    origin, or below DBL_MIN^(1/12) ~ 1.7e-26: its exact expansions (products of up to twelve
 //    factors) underflow, and a cap can be hit far outside its radius — a double cone of size 1e-39
@@ -105,13 +124,10 @@ bool accurate_known_wrong(const Ray<scalar_t<Prim>>& ray, const Prim& prim)
     if constexpr (std::is_same_v<Prim, Sphere<T>>) {
         // Lengths within 2^8 of the largest T: the class boundary is a guess from one reproducer.
         const T near_max = std::ldexp(T(1), std::numeric_limits<T>::max_exponent - 8);
-        double largest = std::abs(double(prim.radius)), smallest = largest;
+        double largest = std::abs(double(prim.radius));
         for (const Vec3<T>& v : {prim.center, ray.origin})
-            for (const T x : {v.x, v.y, v.z}) {
-                largest = std::max(largest, std::abs(double(x)));
-                if (x != T(0)) smallest = std::min(smallest, std::abs(double(x)));
-            }
-        return smallest < double(std::sqrt(std::numeric_limits<T>::min())) || largest >= double(near_max);
+            largest = std::max({largest, std::abs(double(v.x)), std::abs(double(v.y)), std::abs(double(v.z))});
+        return detail_known::has_tiny_coordinate(ray, prim) || largest >= double(near_max);
     } else if constexpr (std::is_same_v<Prim, Disk<T>>) {
         (void)ray;
         return !batch::normal_within_exact_range(prim.normal);
@@ -125,7 +141,8 @@ bool accurate_known_wrong(const Ray<scalar_t<Prim>>& ray, const Prim& prim)
                 if (r != T(0)) finest = std::min(finest, std::abs(double(r)));
         }
         const double distance = std::max(length(wide(prim.p0) - wide(ray.origin)), length(wide(prim.p1) - wide(ray.origin)));
-        return finest < std::pow(std::numeric_limits<double>::min(), 1.0 / 12) || finest < std::ldexp(distance, -80);
+        return finest < std::pow(std::numeric_limits<double>::min(), 1.0 / 12) || finest < std::ldexp(distance, -80) ||
+               detail_known::has_tiny_coordinate(ray, prim);
     } else {
         return false;
     }
