@@ -222,15 +222,17 @@ struct BoundSlack {
     static inline const T sqrt_k_eps = std::sqrt(k_eps);
     // The argument above is about rounding. Products also underflow or overflow, and then a
     // policy may report a hit anywhere (found by the fuzz harnesses' stream and scene
-    // invariants): the fast and stable products of up to six lengths in T, and accurate's exact
-    // expansions of up to twelve factors in double, after exact_curved_crossings has scaled the
-    // largest length to ~1 (so what counts there is the smallest length relative to the largest).
-    // Lanes are therefore always kept when a length (|o − c|, R, the primitive's finest length,
-    // |d|, |o|₁) leaves [tiny, huge], or when the finest length is below 2^-80 of |o − c|:
-    // float ~[4.8e-7, 2.6e6], double ~[1.7e-26, 2.4e51].
-    static inline const T tiny = std::max(std::cbrt(std::sqrt(std::numeric_limits<T>::min())),
+    // invariants): the fast and stable products of up to eight lengths in T (a cylinder's
+    // discriminant b² − ac of b = (u × A)·(d × A): a float cylinder of radius 1e-6 seen along
+    // d of length 1e-6 underflowed it, and the filter dropped a hit the scalar path reported), and
+    // accurate's exact expansions of up to twelve factors in double, after exact_curved_crossings
+    // has scaled the largest length to ~1 (so what counts there is the smallest length relative to
+    // the largest). Lanes are therefore always kept when a length (|o − c|, R, the primitive's
+    // finest length, |d|, |o|₁) leaves [tiny, huge], or when the finest length is below 2^-80 of
+    // |o − c|: float ~[1.8e-5, 6.5e4], double ~[1.7e-26, 1.3e38].
+    static inline const T tiny = std::max(std::sqrt(std::sqrt(std::sqrt(std::numeric_limits<T>::min()))),
                                           static_cast<T>(std::pow(std::numeric_limits<double>::min(), 1.0 / 12)));
-    static inline const T huge = std::cbrt(std::sqrt(std::numeric_limits<T>::max()));
+    static inline const T huge = std::sqrt(std::sqrt(std::sqrt(std::numeric_limits<T>::max())));
     static constexpr T disparity = T(0x1p80);
     static bool outside(T length) { return !(length > tiny && length < huge); }
 
