@@ -20,6 +20,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <random>
 #include <sstream>
 #include <string>
@@ -191,6 +192,60 @@ TEST(FuzzReplay, EveryStoredInputPasses)
     }
     std::printf("replayed %zu stored inputs from %s\n", files, root.string().c_str());
     EXPECT_GT(files, 5u * 10u) << "the seed corpora should hold a few dozen inputs each";
+}
+
+// The stored inputs keep their meaning: each decodes to the fixture lines recorded in
+// fixtures/fuzz/decoded.txt ("<harness>/<file> <fixture line>", one line per decoded case, in
+// decoding order). Recorded from the g++ build and checked under clang in CI, it pins the decoder's
+// compiler independence (C++ leaves argument order unspecified, and g++ and clang once read a
+// crash input's bytes into different rays) and catches decoder changes that would silently turn
+// the corpus and every stored reproducer into other cases. Inputs added later are not listed
+// until recorded again: RAYQ_FUZZ_RECORD_DECODED=<path> writes every stored input's lines there.
+TEST(FuzzReplay, StoredInputsDecodeAsRecorded)
+{
+    namespace fs = std::filesystem;
+    const fs::path root = RAYQ_FUZZ_FIXTURES;
+    const auto lines_of = [&](Harness h, const fs::path& file) {
+        const auto bytes = read_bytes(file);
+        std::vector<std::string> out;
+        decode(h, bytes.data(), bytes.size(), [&](const auto& c) { out.push_back(fixture_line("fuzz." + c.construction, c.ray, c.prim)); });
+        return out;
+    };
+    if (const char* record = std::getenv("RAYQ_FUZZ_RECORD_DECODED")) {
+        std::ofstream out(record);
+        for (const Harness h : all_harnesses) {
+            for (const fs::path& dir : {root / harness_name(h), root / "open" / harness_name(h)}) {
+                if (!fs::is_directory(dir)) continue;
+                std::vector<fs::path> paths;
+                for (const auto& e : fs::directory_iterator(dir))
+                    if (e.is_regular_file()) paths.push_back(e.path());
+                std::sort(paths.begin(), paths.end());
+                for (const auto& p : paths)
+                    for (const std::string& line : lines_of(h, p)) out << fs::relative(p, root).generic_string() << ' ' << line << '\n';
+            }
+        }
+        GTEST_SKIP() << "recorded to " << record;
+    }
+    std::ifstream in(root / "decoded.txt");
+    ASSERT_TRUE(in) << (root / "decoded.txt") << " is missing";
+    std::map<std::string, std::vector<std::string>> recorded;  // input -> its lines, in order
+    std::vector<std::string> order;
+    for (std::string line; std::getline(in, line);) {
+        const auto space = line.find(' ');
+        ASSERT_NE(space, std::string::npos) << "decoded.txt: expected '<harness>/<file> <fixture line>', got: " << line;
+        const std::string file = line.substr(0, space);
+        if (!recorded.count(file)) order.push_back(file);
+        recorded[file].push_back(line.substr(space + 1));
+    }
+    ASSERT_GT(order.size(), 100u);
+    for (const std::string& file : order) {
+        const fs::path path = root / file;
+        const std::string harness = fs::path(file).parent_path().filename().string();
+        const auto h = std::find_if(std::begin(all_harnesses), std::end(all_harnesses), [&](Harness x) { return harness == harness_name(x); });
+        ASSERT_NE(h, std::end(all_harnesses)) << file;
+        ASSERT_TRUE(fs::is_regular_file(path)) << file << " is recorded but missing";
+        EXPECT_EQ(lines_of(*h, path), recorded[file]) << file << " decodes to other cases than recorded";
+    }
 }
 
 // A finding's fixture line is a line of the fixture format (checked against the oracle's parser
