@@ -168,6 +168,24 @@ std::vector<std::uint8_t> read_bytes(const std::filesystem::path& p)
     return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
+// Every stored input of a harness, in order: fixtures/fuzz/<harness>/ then open/<harness>/, each
+// sorted by name.
+std::vector<std::filesystem::path> stored_inputs(Harness h)
+{
+    namespace fs = std::filesystem;
+    const fs::path root = RAYQ_FUZZ_FIXTURES;
+    std::vector<fs::path> all;
+    for (const fs::path& dir : {root / harness_name(h), root / "open" / harness_name(h)}) {
+        if (!fs::is_directory(dir)) continue;
+        std::vector<fs::path> paths;
+        for (const auto& e : fs::directory_iterator(dir))
+            if (e.is_regular_file()) paths.push_back(e.path());
+        std::sort(paths.begin(), paths.end());
+        all.insert(all.end(), paths.begin(), paths.end());
+    }
+    return all;
+}
+
 // Every stored input, forever: the seed corpus, fixed findings, and open reproducers.
 TEST(FuzzReplay, EveryStoredInputPasses)
 {
@@ -175,18 +193,11 @@ TEST(FuzzReplay, EveryStoredInputPasses)
     const fs::path root = RAYQ_FUZZ_FIXTURES;
     std::size_t files = 0;
     for (const Harness h : all_harnesses) {
-        for (const fs::path& dir : {root / harness_name(h), root / "open" / harness_name(h)}) {
-            if (!fs::is_directory(dir)) continue;
-            std::vector<fs::path> paths;
-            for (const auto& e : fs::directory_iterator(dir))
-                if (e.is_regular_file()) paths.push_back(e.path());
-            std::sort(paths.begin(), paths.end());
-            for (const auto& p : paths) {
-                const auto bytes = read_bytes(p);
-                Tally tally;
-                decode(h, bytes.data(), bytes.size(), [&](const auto& c) { check_case(c, p.string(), scene_copies_for(bytes.data(), bytes.size()), true, tally); });
-                ++files;
-            }
+        for (const fs::path& p : stored_inputs(h)) {
+            const auto bytes = read_bytes(p);
+            Tally tally;
+            decode(h, bytes.data(), bytes.size(), [&](const auto& c) { check_case(c, p.string(), scene_copies_for(bytes.data(), bytes.size()), true, tally); });
+            ++files;
         }
         EXPECT_TRUE(fs::is_directory(root / harness_name(h))) << "no seed corpus for " << harness_name(h);
     }
@@ -213,17 +224,9 @@ TEST(FuzzReplay, StoredInputsDecodeAsRecorded)
     };
     if (const char* record = std::getenv("RAYQ_FUZZ_RECORD_DECODED")) {
         std::ofstream out(record);
-        for (const Harness h : all_harnesses) {
-            for (const fs::path& dir : {root / harness_name(h), root / "open" / harness_name(h)}) {
-                if (!fs::is_directory(dir)) continue;
-                std::vector<fs::path> paths;
-                for (const auto& e : fs::directory_iterator(dir))
-                    if (e.is_regular_file()) paths.push_back(e.path());
-                std::sort(paths.begin(), paths.end());
-                for (const auto& p : paths)
-                    for (const std::string& line : lines_of(h, p)) out << fs::relative(p, root).generic_string() << ' ' << line << '\n';
-            }
-        }
+        for (const Harness h : all_harnesses)
+            for (const fs::path& p : stored_inputs(h))
+                for (const std::string& line : lines_of(h, p)) out << fs::relative(p, root).generic_string() << ' ' << line << '\n';
         GTEST_SKIP() << "recorded to " << record;
     }
     std::ifstream in(root / "decoded.txt");
