@@ -2,6 +2,7 @@
 // disks cap0 (at p0) and cap1 (at p1).
 #pragma once
 
+#include "batch/filter_core.hpp"
 #include "detail/bounded.hpp"
 #include "detail/exact_crossings.hpp"
 #include "detail/policy_ops.hpp"
@@ -79,10 +80,12 @@ inline detail::Residual<N> residual(const Cylinder<T>& cyl, const Vec3<N>& o, co
     return {dot(qa, qa) - r * r * dot(axis, axis), B{T(2)} * dot(qa, da), dot(da, da)};
 }
 
-// Accurate: exact decisions, correctly rounded t (detail/exact_crossings.hpp).
+// Accurate: exact decisions, correctly rounded t (detail/exact_crossings.hpp), after the certain
+// misses of the batch filters' exact test on the bounding sphere (as for the sphere).
 template <class T>
 inline Crossings<T> crossings(accurate_policy, const Ray<T>& ray, const Cylinder<T>& cyl, int limit = 2)
 {
+    if (batch::exactly_missed(ray, batch::axial_bound(cyl.p0, cyl.p1, cyl.radius, cyl.radius))) return {};
     return detail::exact_curved_crossings(ray, cyl, true, cyl.caps == Caps::both, {true, true}, limit);
 }
 

@@ -76,46 +76,10 @@
 #include "../query.hpp"
 #include "../ray.hpp"
 #include "../triangle.hpp"
+#include "filter_core.hpp"
 #include "sphere.hpp"
 
-namespace rayq::batch {
-
-template <class T>
-struct BoundingSphere {
-    Vec3<T> center;
-    T radius;  // every point of the primitive is within `radius` of `center` (exactly, up to the
-               // filter's Kε·|c| slack for the rounding of the center)
-    T fine;    // the primitive's smallest nonzero length (radius, edge, axis): where its own
-               // arithmetic may underflow (BoundSlack); 0 where it is known to leave the range
-    Vec3<T> normal{};    // a planar (Cramer) primitive's unit normal, else zero
-    T plane_slack = -1;  // its a = 576ε·κ (at most 1: every lane), else negative (header)
-};
-
-}  // namespace rayq::batch
-
 namespace rayq::detail {
-
-// The center and radius computed in double and the radius rounded up into T with a relative
-// margin that covers double's own rounding (a few ulps of double, far below one of float).
-template <class T>
-batch::BoundingSphere<T> to_bound(const Vec3<double>& c, double radius, double fine)
-{
-    const double r = radius * (1 + 64 * std::numeric_limits<double>::epsilon());
-    T rt = static_cast<T>(r);
-    if (static_cast<double>(rt) < r) rt = std::nextafter(rt, std::numeric_limits<T>::infinity());
-    return {{static_cast<T>(c.x), static_cast<T>(c.y), static_cast<T>(c.z)}, rt, static_cast<T>(fine)};
-}
-
-// The smallest of the lengths that are not zero (a cone's apex radius is zero by design).
-inline double smallest_nonzero(std::initializer_list<double> lengths)
-{
-    double m = std::numeric_limits<double>::infinity();
-    for (const double x : lengths)
-        if (x != 0) m = std::min(m, std::abs(x));
-    return m;
-}
-
-inline double norm2(const Vec3<double>& v) { return std::sqrt(dot(v, v)); }
 
 // The plane test's n̂ and a = 576ε·κ for a primitive whose inside test solves
 // o + t·d = corner + α·e0 + β·e1 by Cramer's rule (see the header). From a = 1 on (or a κ that is
@@ -137,20 +101,8 @@ namespace rayq::batch {
 template <class T>
 BoundingSphere<T> bounding_sphere(const Sphere<T>& s) { return {s.center, s.radius, s.radius}; }
 
-// A disk whose normal `accurate` cannot bring near unit length exactly (a component of 2^512 beside
-// a subnormal one), or whose components then span beyond 2^±64, has products that leave double's
-// range in the exact rim test, which then decides wrongly (known_issues.hpp; found by the fuzz
-// harnesses' scene and stream invariants): its finest length is set to 0, so every lane is kept
-// and batch and scalar still agree.
-template <class T>
-bool normal_within_exact_range(const Vec3<T>& normal)
-{
-    const Vec3<T> n = detail::direction_near_unit(normal);
-    for (const T x : {n.x, n.y, n.z})
-        if (x != T(0) && !detail::within_exact_range(std::abs(x))) return false;
-    return true;
-}
-
+// A disk whose normal is out of the exact range (normal_within_exact_range, filter_core.hpp) keeps
+// every lane: its finest length is set to 0.
 template <class T>
 BoundingSphere<T> bounding_sphere(const Disk<T>& d)
 {
@@ -179,15 +131,6 @@ BoundingSphere<T> bounding_sphere(const Parallelogram<T>& p)
     return bound;
 }
 
-// Axial primitives: a cylinder of radius max(r0, r1) around the axis segment, from its middle.
-template <class T>
-BoundingSphere<T> axial_bound(const Vec3<T>& p0, const Vec3<T>& p1, T r0, T r1)
-{
-    const Vec3<double> a = detail::lift<double>(p0), b = detail::lift<double>(p1);
-    const double half = 0.5 * detail::norm2(b - a), r = std::max(double(r0), double(r1));
-    return detail::to_bound<T>((a + b) * 0.5, std::sqrt(half * half + r * r), detail::smallest_nonzero({2 * half, double(r0), double(r1)}));
-}
-
 template <class T>
 BoundingSphere<T> bounding_sphere(const Cylinder<T>& c) { return axial_bound(c.p0, c.p1, c.radius, c.radius); }
 
@@ -210,48 +153,6 @@ struct is_cone<Cone<T>> : std::true_type {};
 template <class Policy, class Prim>
 inline constexpr bool bound_filter_exact_v =
     has_bounding_sphere_v<Prim> && (std::is_same_v<Policy, accurate_policy> || !is_cone<Prim>::value);
-
-// The filter's constants (see the header comment).
-template <class T>
-struct BoundSlack {
-    static constexpr T k_eps = T(256) * std::numeric_limits<T>::epsilon();
-    // (a + b)² ≤ (1 + 1/16)·a² + 17·b²: a is the slack-widened radius, b the √(Kε) term, so the
-    // comparison needs no square root per lane; (|u| + R)² ≤ 2(|u|² + R²) once more.
-    static constexpr T widen = T(17) / T(16);
-    static constexpr T relative = T(68) * k_eps;  // 17·b² ≤ 68Kε(|u|² + R²) + 34(Kε|o|₁)²
-    static inline const T sqrt_k_eps = std::sqrt(k_eps);
-    // The argument above is about rounding. Products also underflow or overflow, and then a
-    // policy may report a hit anywhere (found by the fuzz harnesses' stream and scene
-    // invariants): the fast and stable products of up to eight lengths in T (a cylinder's
-    // discriminant b² − ac of b = (u × A)·(d × A): a float cylinder of radius 1e-6 seen along
-    // d of length 1e-6 underflowed it, and the filter dropped a hit the scalar path reported), and
-    // accurate's exact expansions of up to twelve factors in double, after exact_curved_crossings
-    // has scaled the largest length to ~1 (so what counts there is the smallest length relative to
-    // the largest). Lanes are therefore always kept when a length (|o − c|, R, the primitive's
-    // finest length, |d|, |o|₁) leaves [tiny, huge], or when the finest length is below 2^-80 of
-    // |o − c|: float ~[1.8e-5, 6.5e4], double ~[1.7e-26, 1.3e38].
-    static inline const T tiny = std::max(std::sqrt(std::sqrt(std::sqrt(std::numeric_limits<T>::min()))),
-                                          static_cast<T>(std::pow(std::numeric_limits<double>::min(), 1.0 / 12)));
-    static inline const T huge = std::sqrt(std::sqrt(std::sqrt(std::numeric_limits<T>::max())));
-    static constexpr T disparity = T(0x1p80);
-    static bool outside(T length) { return !(length > tiny && length < huge); }
-
-    // The slack-widened radius R + Kε·(R + |c|₁); inf (every comparison keeps the lane) for
-    // lengths outside the range or a center beyond it.
-    static T reach(const BoundingSphere<T>& b)
-    {
-        const T c1 = norm1(b.center);
-        if (outside(b.radius) || outside(b.fine) || !(c1 < huge)) return std::numeric_limits<T>::infinity();
-        return b.radius + k_eps * (b.radius + c1);
-    }
-    // The |o − c|² from which on a lane is kept: huge², or less for a primitive whose finest
-    // length is below 2^-80 of that distance.
-    static T far(const BoundingSphere<T>& b)
-    {
-        const T f = b.fine * disparity;
-        return std::min(huge * huge, f * f);
-    }
-};
 
 // The plane test's weight n̂/(2a), so that a lane computes s/2a as one dot product (zero for a
 // primitive without a plane test; a ≥ 576ε, so it stays finite).
@@ -314,39 +215,6 @@ struct BoundSoA {
     }
 };
 
-// What the filter needs of one ray: the sphere filter's per-ray values, plus Kε·|o|₁ (squared
-// and scaled) for the rounding of the hit point's absolute coordinates.
-template <class T>
-struct BoundFilterRay : SphereFilterRay<T> {
-    T abs_slack;  // 34·(Kε·|o|₁)² + the underflow slack on ℓ² (inf: keep every lane, and
-                  // t_slack_abs is inf too)
-
-    explicit BoundFilterRay(const Ray<T>& ray) : SphereFilterRay<T>(ray)
-    {
-        const T ko1 = BoundSlack<T>::k_eps * this->o1;
-        const bool extreme = !(this->o1 < BoundSlack<T>::huge) || BoundSlack<T>::outside(T(1) / this->inv_len);
-        abs_slack = extreme ? std::numeric_limits<T>::infinity() : T(34) * ko1 * ko1 + this->line_slack_abs;
-        if (extreme) this->t_slack_abs = std::numeric_limits<T>::infinity();  // nor the window test
-    }
-};
-
-// The window the filter tests against (see BoundTest): the ray's (tmin, tmax), narrowed as a
-// scene finds nearer hits, and 1/|d|.
-template <class P>
-struct WindowPacks {
-    P tmin, tmax, inv_len, t_slack_abs;
-};
-
-// Which test the filter may make for `Policy` on `Prim` (see the header):
-//   exact   accurate: the tight line test and a window test with Kε margins;
-//   point   fast and stable on primitives whose reported t is the one whose point they test
-//           (cylinders, disks): the line test with the √(Kε) slack, and a window test with the
-//           sphere filter's margin, since that point lies within the slack of the bound;
-//   line    fast and stable on the Cramer primitives (triangles, parallelograms), whose t may err
-//           far more than the point they test near a flat part seen edge-on: the line test and
-//           the plane test, no window test.
-enum class BoundTest { exact, point, line };
-
 template <class Prim>
 struct reports_tested_point : std::false_type {};
 template <class T>
@@ -358,56 +226,6 @@ template <class Policy, class Prim>
 inline constexpr BoundTest bound_test_v = std::is_same_v<Policy, accurate_policy> ? BoundTest::exact
                                           : reports_tested_point<Prim>::value       ? BoundTest::point
                                                                                     : BoundTest::line;
-
-// A planar primitive's plane_weight() as packs.
-template <class P>
-struct PlanePacks {
-    P wx, wy, wz;
-};
-
-// The one test both patterns share, on packs P of T (or on T itself, the one-lane fallback): may
-// some policy hit a primitive whose bounding sphere has center offset u = o − c and widened
-// radius `reach`, along unit direction d? NaN and overflow keep a lane (the scalar path decides).
-// With `plane`, also keep lanes the plane test keeps: drop only if
-// (s/2a)²·(ℓ² − 2·reach²) > |u|² + reach², which implies s·(ℓ − reach) > a·(|u| + reach)
-// ((x + y)² ≤ 2x² + 2y² twice), without a square root per lane; d̂·w = s/2a.
-// With `window`, the window test too (Test ≠ line); Test = exact uses the tight line test.
-template <class T, BoundTest Test, class P>
-RAYQ_INLINE auto bound_keep(const P& ux, const P& uy, const P& uz, const P& dx, const P& dy, const P& dz, const P& reach, const P& far,
-                            const P& abs_slack, const PlanePacks<P>* plane, const WindowPacks<P>* window)
-{
-    using S = BoundSlack<T>;
-    using L = rayq::detail::Lanes<T>;
-    const P uu = ux * ux + uy * uy + uz * uz;
-    const P ud = ux * dx + uy * dy + uz * dz;
-    const P ll = uu - ud * ud;  // squared distance from the center to the line
-    const P rr = reach * reach;
-    const auto out_of_range = !(uu < far);  // kept whatever the tests say
-    if constexpr (Test == BoundTest::line) {
-        const P limit = P(S::widen + S::relative) * rr + P(S::relative) * uu + abs_slack;
-        auto keep = !(ll > limit) || out_of_range;
-        if (plane) {
-            const P sw = dx * plane->wx + dy * plane->wy + dz * plane->wz;
-            keep = keep || !(sw * sw * (ll - P(2) * rr) > uu + rr);
-        }
-        return keep;
-    } else {
-        // exact: the filter's own rounding; point: that, the discriminant's error near tangency
-        // and the tested point's rounding, all within Kε·(|u|² + R²) in units of ℓ² (header).
-        constexpr T k_line = Test == BoundTest::exact ? S::k_eps : T(2) * S::k_eps;
-        const P limit = P(T(1) + k_line) * rr + P(k_line) * uu + abs_slack;
-        const auto line_far = ll > limit;
-        if (L::all(line_far && !out_of_range)) return out_of_range;  // most lane groups of a scene
-        const P tc = -ud * window->inv_len;
-        const P rad = reach * window->inv_len;
-        // exact: |u| ≤ (|tc| + rad)·|d| on a kept line, so Kε of it covers tc's rounding, and of
-        // rad the correctly rounded t's last ulp. point: the reported t's point is within
-        // √(Kε)·(|u| + R) of the bound, so t within that of tc ± rad, as in the sphere filter.
-        const P k = P(Test == BoundTest::exact ? T(2) * S::k_eps : S::sqrt_k_eps);
-        const P margin = rad + k * (L::abs(tc) + rad + rad) + window->t_slack_abs;
-        return !(line_far || tc + margin < window->tmin || tc - margin > window->tmax) || out_of_range;
-    }
-}
 
 // Bit i set: primitive i of lane group g may be hit by `Policy` in (tmin, tmax); clear: certainly
 // missed. Test: bound_test_v<Policy, the stored primitive type>.

@@ -13,17 +13,11 @@
 #include <vector>
 
 #include "../detail/lanes.hpp"
+#include "filter_core.hpp"
 #include "../ray.hpp"
 #include "../sphere.hpp"
 
 namespace rayq::batch {
-
-template <class T>
-struct SphereFilterRay;
-
-// |v|₁, the filters' bound on a point's coordinates.
-template <class T>
-inline T norm1(const Vec3<T>& v) { return std::abs(v.x) + std::abs(v.y) + std::abs(v.z); }
 
 // Spheres as structure of arrays, in whole lane groups; the last group is padded with zeros
 // (finite, so no lane computes NaN) and live() masks the padding out.
@@ -53,49 +47,6 @@ struct SphereSoA {
         const std::size_t n = count - g * width;
         return n >= static_cast<std::size_t>(width) ? (width == 32 ? ~0u : (1u << width) - 1u) : (1u << n) - 1u;
     }
-};
-
-// What the filter needs of one ray, computed once per ray.
-template <class T>
-struct SphereFilterRay {
-    Vec3<T> origin, unit_dir;
-    T inv_len;        // 1/|d|: t is measured in units of d
-    T line_slack_abs; // absolute slack on ℓ² − r² for underflow (see below)
-    T t_slack_abs;
-    T o1;             // |o|₁
-
-    explicit SphereFilterRay(const Ray<T>& ray)
-    {
-        const T len = length(ray.direction);
-        inv_len = T(1) / len;
-        o1 = norm1(ray.origin);
-        extreme = !(len < huge && o1 < huge);
-        origin = ray.origin;
-        unit_dir = ray.direction * inv_len;
-        // Products that underflow err by at most denorm_min/2 absolutely; in the scalar
-        // policies such errors are divided by a = |d|² (≥ the smallest normal for a usable ray),
-        // so K·min/|d|² (plus K·min for the filter's own underflow) bounds them in units of ℓ².
-        // Factored so that no step is subnormal: min/|d|² was, for every ray with |d| > 1, and a
-        // subnormal result costs x86 a ~100-cycle assist (most of a small scene's time per ray).
-        constexpr T k_min = T(k_slack) * std::numeric_limits<T>::min();
-        line_slack_abs = k_min * (T(1) / (len * len) + T(1));
-        // ≥ √line_slack_abs / |d| (√(a + b) ≤ √a + √b), without a second square root per ray.
-        t_slack_abs = sqrt_k_min * (inv_len + T(1)) * inv_len;
-    }
-    // Every policy's discriminant of a sphere errs by at most γ(n)·(b² + |a·c|) ≤ 2γ(n)·a·(|u|² + r²)
-    // with n ≤ 10 (pbrt-v4 "Managing Rounding Error" §6.8.1 bounds; Ray Tracing Gems ch. 7 for the
-    // forms): K = 256 unit roundoffs covers it with a wide margin, plus the filter's own ≤ 8ε·|u|².
-    static constexpr int k_slack = 256;
-    static inline const T sqrt_k_min = std::sqrt(T(k_slack) * std::numeric_limits<T>::min()) * T(1.001);
-    // The rounding argument holds while the policies' products stay finite: at most
-    // |d|²·(|u|² + r²) (fast's b² and a·c, stable's |d|²·(r² − ℓ²)), within a factor 4. Where they
-    // overflow a policy may report a hit anywhere (stable's discriminant overflowed and put a hit
-    // at t = 0: fixtures/fuzz/sphere/crash-stable-overflow-scene-drops-hit). With |d|, |o|₁, |c|₁
-    // and r below H = 2^((max_exponent − 8)/4) those products stay below 5H⁴ ≤ max/16, so a ray
-    // with a longer |d| or |o|₁ keeps every lane, and a sphere with a larger |c|₁ or r is stored
-    // with an infinite radius, which every comparison below keeps (no test per lane).
-    static inline const T huge = std::ldexp(T(1), (std::numeric_limits<T>::max_exponent - 8) / 4);
-    bool extreme;     // |d| or |o|₁ at least `huge`: keep every lane
 };
 
 // Bit i set: sphere i of lane group g may be hit in (tmin, tmax) by some policy; clear: it is

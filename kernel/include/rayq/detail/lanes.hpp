@@ -71,6 +71,25 @@ struct Lanes {
 
 #endif
 
+// Whether every lane of a mask is set, and lane-wise |v|: for Lanes' packs and for one plain T
+// (bool masks), so that a test written over packs also runs on one scalar (batch/filter_core.hpp).
+template <class M>
+inline bool all_lanes(const M& m)
+{
+    if constexpr (std::is_same_v<M, bool>) return m;
+#if defined(RAYQ_HAS_STD_SIMD)
+    else return std::experimental::all_of(m);
+#endif
+}
+template <class P>
+inline P abs_lanes(const P& v)
+{
+    if constexpr (std::is_arithmetic_v<P>) return v < P(0) ? -v : v;
+#if defined(RAYQ_HAS_STD_SIMD)
+    else return std::experimental::abs(v);
+#endif
+}
+
 // Index of the lowest set bit of a nonzero lane mask.
 inline int lowest_bit(std::uint32_t m)
 {
