@@ -101,8 +101,8 @@ namespace rayq::batch {
 template <class T>
 BoundingSphere<T> bounding_sphere(const Sphere<T>& s) { return {s.center, s.radius, s.radius}; }
 
-// A disk whose normal is out of the exact range (normal_within_exact_range, filter_core.hpp) keeps
-// every lane: its finest length is set to 0.
+// A disk whose normal, or a triangle or parallelogram whose edge, is out of the exact range
+// (normal_within_exact_range, filter_core.hpp) keeps every lane: its finest length is set to 0.
 template <class T>
 BoundingSphere<T> bounding_sphere(const Disk<T>& d)
 {
@@ -117,6 +117,7 @@ BoundingSphere<T> bounding_sphere(const Triangle<T>& t)
     BoundingSphere<T> bound = detail::to_bound<T>(m, std::max({detail::norm2(a - m), detail::norm2(b - m), detail::norm2(c - m)}),
                                                   detail::smallest_nonzero({detail::norm2(b - a), detail::norm2(c - b), detail::norm2(a - c)}));
     detail::set_plane_slack(bound, b - a, c - a);  // the edges planar_coordinates solves with
+    if (!normal_within_exact_range(b - a) || !normal_within_exact_range(c - a)) bound.fine = T(0);  // keep every lane
     return bound;
 }
 
@@ -128,6 +129,7 @@ BoundingSphere<T> bounding_sphere(const Parallelogram<T>& p)
     BoundingSphere<T> bound = detail::to_bound<T>(m, 0.5 * std::max(detail::norm2(e0 + e1), detail::norm2(e0 - e1)),
                                                   detail::smallest_nonzero({detail::norm2(e0), detail::norm2(e1)}));
     detail::set_plane_slack(bound, e0, e1);
+    if (!normal_within_exact_range(e0) || !normal_within_exact_range(e1)) bound.fine = T(0);  // keep every lane
     return bound;
 }
 

@@ -154,10 +154,11 @@ struct BoundSlack {
 // A direction `accurate` cannot bring near unit length exactly (a component of 2^512 beside a
 // subnormal one), or whose components then span beyond 2^±64, gives products that leave double's
 // range in the exact tests, which then decide wrongly (known_issues.hpp): a disk's normal (a hit
-// 24 units from a disk of radius 3.3) or a ray's direction (a component of 2^-902 beside 2: a hit
-// at t = 0 one unit from a disk of radius 0.05; both found by the fuzz harnesses' scene and stream
-// invariants). The filters keep every lane of such a disk and of such a ray, so batch and scalar
-// still agree.
+// 24 units from a disk of radius 3.3), a ray's direction (a component of 2^-902 beside 2: a hit
+// at t = 0 one unit from a disk of radius 0.05) or a parallelogram's edge (components 2^-1074 and
+// 1.3e-312 beside 0.96: a hit at t = −0 for a ray nearly in its plane, outside it; all found by
+// the fuzz harnesses' scene and stream invariants). The filters keep every lane of such a
+// primitive and of such a ray, so batch and scalar still agree.
 template <class T>
 bool normal_within_exact_range(const Vec3<T>& normal)
 {
