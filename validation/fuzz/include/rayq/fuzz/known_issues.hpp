@@ -119,7 +119,12 @@ bool accurate_may_hang(const Ray<scalar_t<Prim>>& ray, const Prim& prim)
 //    same for the ray's direction: a direction (2^-4, -2.09, -2^-902) starting in a double disk's
 //    plane, one unit from a disk of radius 0.05, got a hit at t = 0 with t_error = inf
 //    (fixtures/fuzz/open/flat/accurate-disk-tiny-direction-component-hit-far-outside; found by the
-//    flat libFuzzer harness's scene and stream invariants; the filters keep such rays' lanes).
+//    flat libFuzzer harness's scene and stream invariants; the filters keep such rays' lanes);
+//    and for a parallelogram's edges: edge0 = (−2^-1074, 0.96, 1.3e-312), a ray nearly in its
+//    plane passing outside it got a hit at t = −0 with t_error = inf
+//    (fixtures/fuzz/open/flat/accurate-parallelogram-subnormal-edge-hit-outside; same harness).
+//    Known for disks, parallelograms and triangles whose normal, edges or ray direction leave the
+//    exact range (normal_within_exact_range).
 // The edge-case test does not send these to the oracle.
 template <class Prim>
 bool accurate_known_wrong(const Ray<scalar_t<Prim>>& ray, const Prim& prim)
@@ -134,6 +139,12 @@ bool accurate_known_wrong(const Ray<scalar_t<Prim>>& ray, const Prim& prim)
         return detail_known::has_tiny_coordinate(ray, prim) || largest >= double(near_max);
     } else if constexpr (std::is_same_v<Prim, Disk<T>>) {
         return !batch::normal_within_exact_range(prim.normal) || !batch::normal_within_exact_range(ray.direction);
+    } else if constexpr (std::is_same_v<Prim, Parallelogram<T>>) {
+        return !batch::normal_within_exact_range(prim.edge0) || !batch::normal_within_exact_range(prim.edge1) ||
+               !batch::normal_within_exact_range(ray.direction);
+    } else if constexpr (std::is_same_v<Prim, Triangle<T>>) {
+        return !batch::normal_within_exact_range(prim.b - prim.a) || !batch::normal_within_exact_range(prim.c - prim.a) ||
+               !batch::normal_within_exact_range(ray.direction);
     } else if constexpr (std::is_same_v<Prim, Cylinder<T>> || std::is_same_v<Prim, Cone<T>>) {
         const auto wide = [](const Vec3<T>& v) { return Vec3<double>{double(v.x), double(v.y), double(v.z)}; };
         double finest = length(wide(prim.p1) - wide(prim.p0));
