@@ -147,9 +147,6 @@ TYPED_TEST(AccurateContractTest, WindowAtTheRoot)
     EXPECT_FALSE(intersect(accurate, r, p));
 }
 
-}  // namespace
-}  // namespace rayq::test
-
 namespace rayq::test {
 namespace {
 
@@ -261,6 +258,26 @@ TEST(CertifiedBoundRegression, NoCertificateForANonexistentRoot)
         if (h) {
             EXPECT_FALSE(std::isfinite(h->t_error)) << "t = " << h->t << " certified within " << h->t_error;
         }
+}
+
+}  // namespace
+}  // namespace rayq::test
+
+// Found by the sphere libFuzzer harness: a float sphere of radius 2^101 whose surface passes 2^-102
+// from the origin, seen along 2^-13. The rescaled root (2^-203) fell below float's range, and
+// accurate reported 2^-35; CGAL's exact root is 0x1.a70e4dc5ffa0fp-90, which rounds to the float below.
+TEST(AccurateRegression, RescaledRootBelowTheNormalRangeIsRecovered)
+{
+    const Ray<float> r{{0.0f, 0.0f, 0x1.025p+0f}, {0x1p-13f, 0.0f, 0.0f}};
+    const Sphere<float> s{{0x1.3b8b5cp+101f, 0x1.26p-6f, 0.0f}, 0x1.3b8b5cp+101f};
+    const auto h = intersect(accurate, r, s);
+    ASSERT_TRUE(h);
+    EXPECT_EQ(h->t, 0x1.a70e4ep-90f);
+    Ray<float> narrow = r;
+    narrow.tmax = 1.0f;
+    const auto hn = intersect(accurate, narrow, s);
+    ASSERT_TRUE(hn);
+    EXPECT_EQ(hn->t, h->t);
 }
 
 }  // namespace

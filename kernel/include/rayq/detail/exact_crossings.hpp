@@ -270,6 +270,45 @@ inline Vec3<T> direction_near_unit(const Vec3<T>& n)
     return exact ? scaled : n;
 }
 
+// The crossings with every point and radius scaled by 2^-kl and the direction by 2^-kd (the window
+// follows: t' = t·2^(kd−kl)), their t left in the scaled unit; none when a scaling is inexact or a
+// root is not finite there.
+template <class Prim>
+inline std::optional<Crossings<scalar_t<Prim>>> scaled_crossings(const Ray<scalar_t<Prim>>& ray, const Prim& prim, bool axial,
+                                                                  bool capped, CapEnds ends, int limit, int kl, int kd)
+{
+    using T = scalar_t<Prim>;
+    Prim scaled = prim;
+    Ray<T> r = ray;
+    bool exact = true;
+    const auto length_unit = [&](auto& x) {
+        if constexpr (std::is_same_v<std::decay_t<decltype(x)>, T>)
+            exact = exact && scale_exactly(x, -kl);
+        else
+            exact = exact && scale_exactly(x.x, -kl) && scale_exactly(x.y, -kl) && scale_exactly(x.z, -kl);
+    };
+    each_length(scaled, length_unit);
+    length_unit(r.origin);
+    for (T* x : {&r.direction.x, &r.direction.y, &r.direction.z}) exact = exact && scale_exactly(*x, -kd);
+    // A window end that overflows when scaled (tmax = DBL_MAX for a tiny primitive, scaled up by
+    // 2^115: found by the fuzz harnesses' scene invariant, where the unscaled fallback underflowed
+    // and the scene's narrowed window got another answer) becomes ±inf: it is then at least
+    // 2^1024 in the new unit, beyond every root whose scaled value is finite, and the roots that
+    // are not finite fall back below.
+    const auto scale_end = [&](T& x) {
+        const T y = std::ldexp(x, kd - kl);
+        if (std::isinf(y) && std::isfinite(x)) x = y;
+        else exact = exact && scale_exactly(x, kd - kl);
+    };
+    scale_end(r.tmin);
+    scale_end(r.tmax);
+    if (!exact) return std::nullopt;
+    Crossings<T> out = exact_curved_crossings_unscaled(r, scaled, axial, capped, ends, limit);
+    for (const Crossing<T>& c : out)
+        if (!std::isfinite(c.t)) return std::nullopt;
+    return out;
+}
+
 // The same, with the inputs' units changed first when their magnitudes are far from 1. Expansions
 // are exact only while no product (up to about twelve factors: a discriminant compared with a cap's
 // t) under- or overflows, and distances of 2^200 in double made them overflow (and the root search
@@ -298,39 +337,29 @@ inline Crossings<scalar_t<Prim>> exact_curved_crossings(const Ray<scalar_t<Prim>
     const bool scalable = std::isfinite(length) && direction > T(0) && std::isfinite(direction);
     if (in_range || !scalable) return exact_curved_crossings_unscaled(ray, prim, axial, capped, ends, limit);
     const int kl = length == T(0) ? 0 : std::ilogb(length), kd = std::ilogb(direction);
-    Ray<T> r = ray;
-    bool exact = true;
-    const auto length_unit = [&](auto& x) {
-        if constexpr (std::is_same_v<std::decay_t<decltype(x)>, T>)
-            exact = exact && scale_exactly(x, -kl);
-        else
-            exact = exact && scale_exactly(x.x, -kl) && scale_exactly(x.y, -kl) && scale_exactly(x.z, -kl);
+    // The rescaled problem's roots are t·2^(kd−kl), rounded in T: one that falls below T's normal
+    // range there loses bits that unscaling cannot restore (a float sphere of radius 2^101 with
+    // the origin 2^-102 outside it, seen along 2^-13: t = 2^-89 became 2^-203, rounded to 0 and
+    // reported as 2^-35; found by the sphere libFuzzer harness). Such roots are solved again with
+    // the lengths' unit lowered and the direction's raised by 2^60 each (every magnitude stays
+    // within the exact range), which lifts them by 2^120.
+    int shift = kl - kd;  // t = t'·2^shift
+    std::optional<Crossings<T>> out = scaled_crossings(ray, prim, axial, capped, ends, limit, kl, kd);
+    const auto lost_bits = [](const Crossings<T>& c) {
+        for (const Crossing<T>& x : c)
+            if (std::abs(x.t) < std::numeric_limits<T>::min()) return true;
+        return false;
     };
-    each_length(scaled, length_unit);
-    length_unit(r.origin);
-    for (T* x : {&r.direction.x, &r.direction.y, &r.direction.z}) exact = exact && scale_exactly(*x, -kd);
-    // A window end that overflows when scaled (tmax = DBL_MAX for a tiny primitive, scaled up by
-    // 2^115: found by the fuzz harnesses' scene invariant, where the unscaled fallback underflowed
-    // and the scene's narrowed window got another answer) becomes ±inf: it is then at least
-    // 2^1024 in the new unit, beyond every root whose scaled value is finite, and the roots that
-    // are not finite fall back below.
-    const auto scale_end = [&](T& x) {
-        const T y = std::ldexp(x, kd - kl);
-        if (std::isinf(y) && std::isfinite(x)) x = y;
-        else exact = exact && scale_exactly(x, kd - kl);
-    };
-    scale_end(r.tmin);
-    scale_end(r.tmax);
-    if (!exact) return exact_curved_crossings_unscaled(ray, prim, axial, capped, ends, limit);
-    Crossings<T> out = exact_curved_crossings_unscaled(r, scaled, axial, capped, ends, limit);
-    for (const Crossing<T>& c : out)
-        if (!std::isfinite(c.t)) return exact_curved_crossings_unscaled(ray, prim, axial, capped, ends, limit);
-    for (Crossing<T>& c : out.item) {
-        c.t = std::ldexp(c.t, kl - kd);  // exact unless subnormal or beyond the largest float
+    if (out && lost_bits(*out)) {
+        if (auto lifted = scaled_crossings(ray, prim, axial, capped, ends, limit, kl - 60, kd + 60)) out = lifted, shift -= 120;
+    }
+    if (!out) return exact_curved_crossings_unscaled(ray, prim, axial, capped, ends, limit);
+    for (Crossing<T>& c : out->item) {
+        c.t = std::ldexp(c.t, shift);  // exact unless subnormal or beyond the largest float
         if (!(c.t > ray.tmin)) c.t = next_up(ray.tmin);
         if (!(c.t < ray.tmax)) c.t = next_down(ray.tmax);
     }
-    return out;
+    return *out;
 }
 
 }  // namespace rayq::detail
