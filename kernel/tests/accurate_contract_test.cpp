@@ -114,6 +114,27 @@ TYPED_TEST(AccurateContractTest, GrazingSphere)
     EXPECT_EQ(tally.not_rounded, 0);
 }
 
+// Roots exactly on a midpoint between two floats round to even, and the certified shortcuts
+// (the float-in-double interval, the Newton step) must hand such ties to the exact search: a
+// sphere of radius 1 seen along its axis from 2^p + 2 away, where floats are 2 apart, has its
+// roots at 2^p + 1 and 2^p + 3.
+TYPED_TEST(AccurateContractTest, ExactTiesRoundToEven)
+{
+    using T = TypeParam;
+    const T p2 = std::ldexp(T(1), std::numeric_limits<T>::digits);  // floats are 2 apart above it
+    const Sphere<T> s{Vec3<T>{T(0), T(0), T(0)}, T(1)};
+    const Ray<T> r{Vec3<T>{T(0), T(0), -(p2 + T(2))}, Vec3<T>{T(0), T(0), T(1)}};
+    const auto all = intersect_all(accurate, r, s);
+    ASSERT_EQ(all.size(), 2);
+    EXPECT_EQ(all[0].hit.t, p2);           // 2^p + 1: between 2^p (even) and 2^p + 2 (odd)
+    EXPECT_EQ(all[1].hit.t, p2 + T(4));    // 2^p + 3: between 2^p + 2 (odd) and 2^p + 4 (even)
+    // Half a float's spacing off the tie, either way, is no longer a tie.
+    const Sphere<T> nudged{Vec3<T>{T(0), T(0), T(0)}, T(1) + std::numeric_limits<T>::epsilon()};
+    const auto h = intersect(accurate, r, nudged);
+    ASSERT_TRUE(h);
+    EXPECT_EQ(h->t, p2);  // 2^p + 1 − ε: below the tie, nearest 2^p
+}
+
 // The far, small sphere of the notes: all three policies hit; only accurate is correctly rounded
 // in float (fast is off by ~2 units of t, see SphereTest.FarAwaySmallSphere).
 TYPED_TEST(AccurateContractTest, FarSphereAlongAnOddDirection)

@@ -34,17 +34,27 @@ namespace detail {
 template <class T> struct ExactComponent { using type = T; };
 template <> struct ExactComponent<float> { using type = double; };
 
+// The accurate policy's first filter precision: T's own, except for float, whose first filter is
+// hardware double (wide_t<float>): in scalar code it costs what float does, and its bounds are
+// 2^29 times tighter, tight enough to round most roots correctly without a Newton step
+// (ExactQuadratic::interval_round).
+template <class T> struct First { using type = Bounded<T>; };
+template <> struct First<float> { using type = Bounded<double>; };
+template <class T>
+using first_t = typename First<T>::type;
+
 // The sign of expr(N) for the exact inputs: expr is generic over the number type and is called
-// with a zero of Bounded<T> (working precision), then wide_t<T> (about twice the precision),
+// with a zero of first_t<T> (working precision), then wide_t<T> (about twice the precision),
 // and only if neither can decide, of Expansion (exact).
 template <class T, class Expr>
 inline int adaptive_sign(const Expr& expr)
 {
-    const Bounded<T> b = expr(Bounded<T>{T(0)});
-    if (b.v == T(0) && b.e == T(0)) return 0;  // exactly zero (e.g. a plane's leading coefficient)
+    const auto b = expr(first_t<T>{T(0)});
+    if (b.v == 0 && b.e == 0) return 0;  // exactly zero (e.g. a plane's leading coefficient)
     if (b.v > b.e) return 1;
     if (-b.v > b.e) return -1;
-    if (const int s = certain_sign(expr(wide_t<T>{T(0)}))) return s;
+    if constexpr (!std::is_same_v<first_t<T>, wide_t<T>>)
+        if (const int s = certain_sign(expr(wide_t<T>{T(0)}))) return s;
     exact_fallbacks.fetch_add(1, std::memory_order_relaxed);
     return expr(Expansion<typename ExactComponent<T>::type>{}).sign();
 }
@@ -83,7 +93,7 @@ inline int quadratic_sign_at(const Coef& coef, const Line& x)
 template <class T, class Coef>
 class ExactQuadratic {
 public:
-    explicit ExactQuadratic(const Coef& coef) : coef_(coef), bounded0_(coef(Bounded<T>{T(0)}))
+    explicit ExactQuadratic(const Coef& coef) : coef_(coef), bounded0_(coef(first_t<T>{T(0)}))
     {
         sign_a_ = adaptive_sign<T>([&](auto zero) { return at_zero(zero).a; });
         if (sign_a_ != 0) {
@@ -178,11 +188,54 @@ public:
     // guess (cancellation in the coefficients: far away, near tangency), else an exact search.
     T round(int which) const
     {
-        if (const auto quick = newton_round(which, guess<Bounded<T>>(which))) return *quick;
+        if constexpr (std::is_same_v<first_t<T>, Bounded<T>>) {
+            if (const auto quick = newton_round(which, guess<Bounded<T>>(which))) return *quick;
+        } else {
+            if (const auto quick = interval_round(which)) return *quick;
+        }
         const T careful = guess<wide_t<T>>(which);
         if (const auto quick = newton_round(which, careful)) return *quick;
         return search_round(which, careful);
     }
+    // The root from the first filter's coefficients with a certified interval, by running error
+    // bounds (pbrt-v4 "Managing Rounding Error") through the cancellation-free quadratic formula
+    // q = −(b + sign(b)·√Δ)/2, roots q/a and c/q (Ray Tracing Gems ch. 7): when the interval lies
+    // strictly between the midpoints around its nearest T, that T is the correctly rounded root.
+    // For float in double the interval is ~2^-50 of the root against float's 2^-24 spacing: it
+    // decides nearly every root with no evaluation beyond the coefficients at t = 0.
+    std::optional<T> interval_round(int which) const
+    {
+        using B = first_t<T>;
+        using W = decltype(B{}.v);
+        const B a = bounded0_.a, b = bounded0_.df, c = bounded0_.f;
+        B root;
+        if (sign_a_ == 0) {
+            if (!(std::abs(b.v) > b.e)) return std::nullopt;
+            root = quotient(-c, b);
+        } else {
+            if (sign_disc_ <= 0 || !(std::abs(a.v) > a.e)) return std::nullopt;
+            const B disc = b * b - B{W(4)} * a * c;
+            if (!(disc.v > W(0) && lower(disc) > W(0))) return std::nullopt;
+            const W s = std::sqrt(disc.v);
+            // |√D − √d| = |D − d|/(√D + √d) <= e/√d; s itself is one rounding from √d.
+            const B sq{s, grow(grow(disc.e / s) + unit_roundoff<W> * s)};
+            const B q = B{W(-0.5)} * (b.v >= W(0) ? b + sq : b - sq);
+            if (!(std::abs(q.v) > q.e)) return std::nullopt;
+            B r0 = quotient(q, a), r1 = quotient(c, q);
+            if (r1.v < r0.v) std::swap(r0, r1);
+            const W margin = W(1) - W(2) * unit_roundoff<W>;  // one rounding of the difference
+            if (!((r1.v - r0.v) * margin > grow(r0.e + r1.e))) return std::nullopt;  // the intervals must say which root is which
+            root = which == 0 ? r0 : r1;
+        }
+        const T t = static_cast<T>(root.v);
+        if (!std::isfinite(t) || t == T(0) || !std::isfinite(root.e)) return std::nullopt;
+        // Midpoints between t and its neighbours are exact in W; the root must lie strictly between them.
+        const W below = (W(next_down(t)) + W(t)) / W(2), above = (W(t) + W(next_up(t))) / W(2);
+        const W margin = W(1) - W(2) * unit_roundoff<W>;  // each difference is rounded once
+        if ((root.v - below) * margin > root.e && (above - root.v) * margin > root.e) return t;
+        return std::nullopt;
+    }
+
     // One Newton step t + δ, δ = −F(t)/F'(t), with F, F' and a evaluated in wide_t arithmetic
     // at t. With x = 4·|a|·|F|/F'² <= 1/2 the nearest root lies within |δ|·x/2 of t + δ (the
     // quadratic's root 2F/(F' ± √(F'² − 4aF)) against its linearization), plus the bounds'
@@ -271,7 +324,7 @@ private:
     template <class N>
     Residual<N> at_zero(N zero) const
     {
-        if constexpr (std::is_same_v<N, Bounded<T>>) {
+        if constexpr (std::is_same_v<N, first_t<T>>) {
             return bounded0_;
         } else if constexpr (std::is_same_v<N, wide_t<T>>) {
             if (!wide0_) wide0_ = coef_(zero);
@@ -312,8 +365,18 @@ private:
         return x;
     }
 
+    // x/y for y certainly nonzero: |X/Y − x/y| <= (e_x + |x/y|·e_y)/(|y| − e_y), plus the rounding.
+    template <class B>
+    static B quotient(const B& x, const B& y)
+    {
+        using W = decltype(x.v / y.v);
+        const W v = x.v / y.v, y_min = lower(y);
+        if (!(y_min > W(0))) return {v, std::numeric_limits<W>::infinity()};
+        return {v, grow(grow(x.e + grow(std::abs(v) * y.e)) / y_min + unit_roundoff<W> * std::abs(v))};
+    }
+
     Coef coef_;
-    Residual<Bounded<T>> bounded0_;
+    Residual<first_t<T>> bounded0_;
     mutable std::optional<Residual<wide_t<T>>> wide0_;
     int sign_a_ = 0, sign_disc_ = 0, sign_b_ = 0, sign_c_ = 0;
 };
