@@ -20,6 +20,7 @@
 
 #include "detail/bounded.hpp"
 #include "detail/policy_ops.hpp"
+#include "detail/ulp.hpp"
 #include "hit.hpp"
 #include "policy.hpp"
 #include "ray.hpp"
@@ -40,7 +41,9 @@ template <class T>
 struct Crossing {
     T t;
     Part part;
-    bool entering;  // the ray passes from outside to inside here
+    bool entering;         // the ray passes from outside to inside here
+    bool rounded = false;  // t is the exact root correctly rounded (or the float next to the window's
+                           // end it lies within an ulp of), certified by running error bounds: accurate
 };
 
 // At most two: every primitive is a convex solid, a quadric surface or a flat piece.
@@ -49,7 +52,7 @@ struct Crossings {
     int count = 0;
     Crossing<T> item[2]{};
 
-    constexpr void add(T t, Part part, bool entering) { item[count++] = {t, part, entering}; }
+    constexpr void add(T t, Part part, bool entering, bool rounded = false) { item[count++] = {t, part, entering, rounded}; }
     constexpr const Crossing<T>* begin() const { return item; }
     constexpr const Crossing<T>* end() const { return item + count; }
 };
@@ -100,18 +103,29 @@ inline Hit<scalar_t<Prim>> make_hit(Policy policy, const Ray<scalar_t<Prim>>& ra
         h.normal = n;
     }
     if (!wants(fields, HitFields::bounds)) return h;
-    // A posteriori, independent of how t was found: bounds on F(t), F'(t) and a certify how far
-    // the exact root can be (detail::certify_root). The point then errs by t_error·|d| plus the
-    // rounding of o + t·d (at most two roundings: γ(2)·(|o| + |t·d|), pbrt-v4 §6.8.5).
-    const auto r = residual(prim, exact(ray.origin), exact(ray.direction), Bounded<T>{c.t}, c.part);
-    T t_error = certify_root(r);
+    constexpr bool exact_decisions = std::is_same_v<Policy, accurate_policy> && accurate_decides_exactly<Prim>::value;
+    T t_error;
+    if (exact_decisions && c.rounded) {
+        // accurate decided hit, part and window exactly, and certified that t is the exact root
+        // correctly rounded (or the float next to the window's end, the root lying within an ulp
+        // of it): the root is within one ulp of t. Roots rounded by the exact search are not
+        // certified so: its expansions are exact only while no product leaves double's range
+        // (planes near DBL_MAX were rounded 7 ulps off), and they get the a-posteriori bound.
+        t_error = std::max(detail::next_up(c.t) - c.t, c.t - detail::next_down(c.t));
+    } else {
+        // A posteriori, independent of how t was found: bounds on F(t), F'(t) and a certify how
+        // far the exact root can be (detail::certify_root).
+        t_error = certify_root(residual(prim, exact(ray.origin), exact(ray.direction), Bounded<T>{c.t}, c.part));
+    }
+    // The point errs by t_error·|d| plus the rounding of o + t·d (at most two roundings:
+    // γ(2)·(|o| + |t·d|), pbrt-v4 §6.8.5).
     const T root_error = t_error;  // the crossing's own bound: what the point's error needs
-    // The certified root must also provably lie inside the window, or it may not be this hit.
-    if (!(c.t - t_error > ray.tmin && c.t + t_error < ray.tmax)) t_error = std::numeric_limits<T>::infinity();
+    // The certified root must also provably lie inside the window, or it may not be this hit
+    // (decided exactly under exact_decisions).
+    if (!exact_decisions && !(c.t - t_error > ray.tmin && c.t + t_error < ray.tmax)) t_error = std::numeric_limits<T>::infinity();
     // ... and on the trimmed part (inside the triangle, within the side's height, the cap's
     // radius, the clip box): a root of the untrimmed surface near a rim may belong to no hit at
     // all. Policies whose trim decisions are exact have nothing to prove here.
-    constexpr bool exact_decisions = std::is_same_v<Policy, accurate_policy> && accurate_decides_exactly<Prim>::value;
     if (!exact_decisions && std::isfinite(t_error) &&
         !certainly_within(trim_margins(prim, exact(ray.origin), exact(ray.direction), Bounded<T>{c.t, t_error}, c.part)))
         t_error = std::numeric_limits<T>::infinity();

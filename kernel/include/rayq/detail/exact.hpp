@@ -186,8 +186,10 @@ public:
     // The root rounded to nearest (ties to even) in T: a certified Newton step in double-word
     // arithmetic from a working-precision guess (enough for most rays), else from a double-word
     // guess (cancellation in the coefficients: far away, near tangency), else an exact search.
-    T round(int which) const
+    // `certified` says whether a running-error certificate (interval or Newton) decided it.
+    T round(int which, bool* certified = nullptr) const
     {
+        if (certified) *certified = true;
         if constexpr (std::is_same_v<first_t<T>, Bounded<T>>) {
             if (const auto quick = newton_round(which, guess<Bounded<T>>(which))) return *quick;
         } else {
@@ -195,6 +197,7 @@ public:
         }
         const T careful = guess<wide_t<T>>(which);
         if (const auto quick = newton_round(which, careful)) return *quick;
+        if (certified) *certified = false;
         return search_round(which, careful);
     }
     // The root from the first filter's coefficients with a certified interval, by running error

@@ -157,10 +157,20 @@ private:
         const int slot = e.kind == EndKind::root ? e.which : (e.kind == EndKind::cap0 ? 2 : 3);
         if (!cache_[slot]) {
             const Quadratic& q = quadratic(e);
-            cache_[slot] = q.round(e.which);
+            cache_[slot] = q.round(e.which, &certified_[slot]);
         }
         return *cache_[slot];
     }
+
+public:
+    // Whether value(e)'s rounding was certified by running error bounds (ExactQuadratic::round).
+    bool certified(End e) const
+    {
+        rounded(e);
+        return certified_[e.kind == EndKind::root ? e.which : (e.kind == EndKind::cap0 ? 2 : 3)];
+    }
+
+private:
     // A certified interval around the end (memoized): its rounded value's neighbours when that is
     // already known, else the quadratic's cheap enclosure.
     std::optional<std::pair<T, T>> enclosure(End e) const
@@ -190,6 +200,7 @@ private:
     Quadratic side_;
     std::optional<Quadratic> cap0_, cap1_;
     mutable std::optional<T> cache_[4];  // rounded values: root 0, root 1, cap0, cap1
+    mutable bool certified_[4] = {};     // and whether a running-error certificate rounded them
     mutable std::optional<std::optional<std::pair<T, T>>> enclosed_[4];  // their enclosures, once tried
 };
 
@@ -240,9 +251,9 @@ inline Crossings<scalar_t<Prim>> exact_curved_crossings_unscaled(const Ray<scala
     Crossings<T> out;
     for (int i = 0; i < n && out.count < limit; ++i)
         if (found[i].end.finite() && solid.in_window(found[i].end)) {
-            T t = solid.value(found[i].end);
-            if (out.count > 0) t = std::max(t, out.item[out.count - 1].t);
-            out.add(t, found[i].part, found[i].entering);
+            const T t = solid.value(found[i].end);
+            const bool ordered = out.count == 0 || !(t < out.item[out.count - 1].t);
+            out.add(ordered ? t : out.item[out.count - 1].t, found[i].part, found[i].entering, ordered && solid.certified(found[i].end));
         }
     return out;
 }
@@ -384,7 +395,8 @@ inline Crossings<scalar_t<Prim>> exact_flat_crossing(const Ray<scalar_t<Prim>>& 
     const ExactQuadratic<T, Coef> plane(Coef{&prim, &ray, Part::surface});
     Crossings<T> out;
     if (plane.sign_b() == 0) return out;  // parallel to the plane, or in it
-    T t = plane.round(0);
+    bool certified = false;
+    T t = plane.round(0, &certified);
     // The exact root lies strictly between t's neighbours: decide the window from them when they
     // suffice, exactly otherwise.
     const auto after = [&](T x) {
@@ -402,7 +414,7 @@ inline Crossings<scalar_t<Prim>> exact_flat_crossing(const Ray<scalar_t<Prim>>& 
     if (!after(ray.tmin) || !before(ray.tmax) || !inside(plane)) return out;
     if (!(t > ray.tmin)) t = next_up(ray.tmin);
     if (!(t < ray.tmax)) t = next_down(ray.tmax);
-    out.add(t, Part::surface, plane.sign_b() < 0);  // F = (o + t·d − p)·n decreasing: entering
+    out.add(t, Part::surface, plane.sign_b() < 0, certified);  // F = (o + t·d − p)·n decreasing: entering
     return out;
 }
 
