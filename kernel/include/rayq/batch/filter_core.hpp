@@ -260,17 +260,31 @@ BoundingSphere<T> axial_bound(const Vec3<T>& p0, const Vec3<T>& p1, T r0, T r1)
     return detail::to_bound<T>((a + b) * 0.5, std::sqrt(half * half + r * r), detail::smallest_nonzero({2 * half, double(r0), double(r1)}));
 }
 
-// Whether `accurate` certainly reports no crossing of a primitive inside `b` in the ray's window:
-// the filter's exact test (BoundTest::exact) on one lane. For a usable ray.
+// Whether `accurate` certainly reports no crossing of a primitive inside `b`: the ray's line
+// passes the bound farther than the rounding of this test can hide. One lane, in the exact
+// component's precision (hardware double for float inputs) and without division or square root:
+// ℓ²·|d|² = |u × d|² against reach²·|d|², u = o − c. The computed |u × d|² errs by at most ~20
+// unit roundoffs of |u|²·|d|² (one rounding of each u_i, two per cross component, three per sum;
+// pbrt-v4 "Managing Rounding Error" §6.8.1 bounds), covered by k = 256 unit roundoffs; the
+// bound's own center rounding is in reach. The range guards are the filters' (BoundSlack), plus
+// |d|² within 2^±600 so that no product underflows or overflows for double inputs. The window is
+// not tested: the scene and stream filters test it before they call the scalar path.
 template <class T>
 inline bool exactly_missed(const Ray<T>& ray, const BoundingSphere<T>& b)
 {
     using S = BoundSlack<T>;
-    const BoundFilterRay<T> f(ray);
-    const Vec3<T> u = ray.origin - b.center;
-    const WindowPacks<T> window{ray.tmin, ray.tmax, f.inv_len, f.t_slack_abs};
-    return !bound_keep<T, BoundTest::exact>(u.x, u.y, u.z, f.unit_dir.x, f.unit_dir.y, f.unit_dir.z, S::reach(b), S::far(b),
-                                             f.abs_slack, static_cast<const PlanePacks<T>*>(nullptr), &window);
+    using W = typename detail::ExactComponent<T>::type;
+    const T reach = S::reach(b);
+    if (!(reach < std::numeric_limits<T>::infinity())) return false;
+    const W ux = W(ray.origin.x) - W(b.center.x), uy = W(ray.origin.y) - W(b.center.y), uz = W(ray.origin.z) - W(b.center.z);
+    const W dx = ray.direction.x, dy = ray.direction.y, dz = ray.direction.z;
+    const W uu = ux * ux + uy * uy + uz * uz, dd = dx * dx + dy * dy + dz * dz;
+    if (!(uu < W(S::far(b)) && dd > W(0x1p-600) && dd < W(0x1p600))) return false;
+    const W cx = uy * dz - uz * dy, cy = uz * dx - ux * dz, cz = ux * dy - uy * dx;
+    const W ll_dd = cx * cx + cy * cy + cz * cz;
+    constexpr W k = W(256) * (std::numeric_limits<W>::epsilon() / 2);
+    const W rr = W(reach) * W(reach);
+    return ll_dd > (rr * (W(1) + k) + k * uu) * dd;
 }
 
 }  // namespace rayq::batch
