@@ -72,12 +72,12 @@ inline std::uint32_t sphere_candidates(const SphereFilterRay<T>& f, T tmin, T tm
     // cancellation, its error (≤ 8ε|u|²) is inside the slack; clarity beats precision here.
     const P ll = uu - ud * ud;
     const auto line_far = ll > rr + P(k_eps) * (uu + rr) + P(f.line_slack_abs);
-    if (L::all(line_far)) return 0;  // the common case in a scene: no lane near the line
+    if (detail::all_lanes(line_far)) return 0;  // the common case in a scene: no lane near the line
     // The crossings lie in tc ± r/|d|; a policy's t errs by at most √(Kε)·(|tc| + 2r/|d|) (the
     // square root of the discriminant's error near tangency: Ray Tracing Gems ch. 7).
     const P tc = -ud * P(f.inv_len);
-    const P rad = L::abs(r) * P(f.inv_len);
-    const P margin = rad + P(sqrt_k_eps) * (L::abs(tc) + rad + rad) + P(f.t_slack_abs);
+    const P rad = detail::abs_lanes(r) * P(f.inv_len);
+    const P margin = rad + P(sqrt_k_eps) * (detail::abs_lanes(tc) + rad + rad) + P(f.t_slack_abs);
     const auto behind = tc + margin < P(tmin);
     const auto beyond = tc - margin > P(tmax);
     const auto drop = line_far || behind || beyond;

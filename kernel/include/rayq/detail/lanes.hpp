@@ -37,9 +37,6 @@ struct Lanes {
     static constexpr int width = static_cast<int>(pack::size());
 
     static pack load(const T* p) { return pack(p, std::experimental::element_aligned); }
-    static pack abs(const pack& v) { return std::experimental::abs(v); }
-    static bool none(const mask& m) { return std::experimental::none_of(m); }
-    static bool all(const mask& m) { return std::experimental::all_of(m); }
     static std::uint32_t bits(const mask& m)  // lane i -> bit i
     {
         // libstdc++'s bitset extension is one movmsk/kmov; the lane loop is what the TS offers
@@ -63,9 +60,6 @@ struct Lanes {
     static constexpr int width = 1;
 
     static pack load(const T* p) { return *p; }
-    static pack abs(const pack& v) { return v < T(0) ? -v : v; }
-    static bool none(mask m) { return !m; }
-    static bool all(mask m) { return m; }
     static std::uint32_t bits(mask m) { return m ? 1u : 0u; }
 };
 
