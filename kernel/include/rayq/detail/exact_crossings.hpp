@@ -328,6 +328,42 @@ inline std::optional<Crossings<scalar_t<Prim>>> scaled_crossings(const Ray<scala
     return out;
 }
 
+// Whether the certificates that let a hit report t_error = one ulp (ExactQuadratic::interval_round
+// and newton_round: running error bounds) can be trusted: their error bounds are relative, and
+// a product that underflows breaks them. Products have up to twelve factors; with every nonzero
+// radius, point-to-origin and point-to-point difference within 2^-60 of the largest length, and
+// every nonzero direction component within 2^-60 of the largest, none falls below 2^-720 of the
+// largest product (exact_curved_crossings has scaled the largest length and direction to ~1).
+// Found by the axial libFuzzer harness: a double cone of size 2^-124 seen from 0.06 away got a
+// certified t 10% off the exact root (CGAL) with t_error = 0.125.
+template <class Prim>
+inline bool certificates_hold(const Ray<scalar_t<Prim>>& ray, const Prim& prim)
+{
+    using T = scalar_t<Prim>;
+    Prim copy = prim;
+    T largest = T(0), finest = std::numeric_limits<T>::infinity();
+    const auto see = [&](T x) {
+        x = std::abs(x);
+        largest = std::max(largest, x);
+        if (x != T(0)) finest = std::min(finest, x);
+    };
+    const Vec3<T>* previous = nullptr;
+    each_length(copy, [&](auto& x) {
+        if constexpr (std::is_same_v<std::decay_t<decltype(x)>, T>) {
+            see(x);
+        } else {
+            see(x.x - ray.origin.x), see(x.y - ray.origin.y), see(x.z - ray.origin.z);
+            if (previous) see(x.x - previous->x), see(x.y - previous->y), see(x.z - previous->z);
+            previous = &x;
+        }
+    });
+    const T d = std::max({std::abs(ray.direction.x), std::abs(ray.direction.y), std::abs(ray.direction.z)});
+    bool direction_ok = true;
+    for (const T c : {ray.direction.x, ray.direction.y, ray.direction.z})
+        direction_ok = direction_ok && (c == T(0) || std::abs(c) >= std::ldexp(d, -60));
+    return direction_ok && std::isfinite(largest) && (largest == T(0) || finest >= std::ldexp(largest, -60));
+}
+
 // The same, with the inputs' units changed first when their magnitudes are far from 1. Expansions
 // are exact only while no product (up to about twelve factors: a discriminant compared with a cap's
 // t) under- or overflows, and distances of 2^200 in double made them overflow (and the root search
@@ -337,8 +373,8 @@ inline std::optional<Crossings<scalar_t<Prim>>> scaled_crossings(const Ray<scala
 // 1. The residuals are homogeneous, so every sign is unchanged, and t' = t·2^(kd−kl) exactly,
 // which is undone on the rounded t.
 template <class Prim>
-inline Crossings<scalar_t<Prim>> exact_curved_crossings(const Ray<scalar_t<Prim>>& ray, const Prim& prim, bool axial, bool capped,
-                                                         CapEnds ends, int limit)
+inline Crossings<scalar_t<Prim>> exact_curved_crossings_in_unit(const Ray<scalar_t<Prim>>& ray, const Prim& prim, bool axial, bool capped,
+                                                                 CapEnds ends, int limit)
 {
     using T = scalar_t<Prim>;
     Prim scaled = prim;
@@ -379,6 +415,16 @@ inline Crossings<scalar_t<Prim>> exact_curved_crossings(const Ray<scalar_t<Prim>
         if (!(c.t < ray.tmax)) c.t = next_down(ray.tmax);
     }
     return *out;
+}
+
+template <class Prim>
+inline Crossings<scalar_t<Prim>> exact_curved_crossings(const Ray<scalar_t<Prim>>& ray, const Prim& prim, bool axial, bool capped,
+                                                         CapEnds ends, int limit)
+{
+    Crossings<scalar_t<Prim>> out = exact_curved_crossings_in_unit(ray, prim, axial, capped, ends, limit);
+    if (out.count > 0 && !certificates_hold(ray, prim))
+        for (auto& c : out.item) c.rounded = false;
+    return out;
 }
 
 }  // namespace rayq::detail
