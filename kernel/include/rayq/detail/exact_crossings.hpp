@@ -357,11 +357,10 @@ inline bool certificates_hold(const Ray<scalar_t<Prim>>& ray, const Prim& prim)
             previous = &x;
         }
     });
-    const T d = std::max({std::abs(ray.direction.x), std::abs(ray.direction.y), std::abs(ray.direction.z)});
-    bool direction_ok = true;
-    for (const T c : {ray.direction.x, ray.direction.y, ray.direction.z})
-        direction_ok = direction_ok && (c == T(0) || std::abs(c) >= std::ldexp(d, -60));
-    return direction_ok && std::isfinite(largest) && (largest == T(0) || finest >= std::ldexp(largest, -60));
+    const T dx = std::abs(ray.direction.x), dy = std::abs(ray.direction.y), dz = std::abs(ray.direction.z);
+    const T least = std::max({dx, dy, dz}) * T(0x1p-60);  // multiplying by 2^-60 rounds down, if at all
+    const bool direction_ok = (dx == T(0) || dx >= least) && (dy == T(0) || dy >= least) && (dz == T(0) || dz >= least);
+    return direction_ok && largest < std::numeric_limits<T>::infinity() && (largest == T(0) || finest >= largest * T(0x1p-60));
 }
 
 // The same, with the inputs' units changed first when their magnitudes are far from 1. Expansions
