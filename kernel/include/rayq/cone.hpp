@@ -95,8 +95,8 @@ inline Crossings<T> crossings(accurate_policy, const Ray<T>& ray, const Cone<T>&
 }
 
 // Every point and radius of the cone, for the exact path's rescaling (detail/exact_crossings.hpp).
-template <class T, class F>
-inline void each_length(Cone<T>& c, F&& f)
+template <class S, class F, std::enable_if_t<detail::is_instance_v<S, Cone>, int> = 0>
+inline void each_length(S& c, F&& f)
 {
     f(c.p0), f(c.r0), f(c.p1), f(c.r1);
 }

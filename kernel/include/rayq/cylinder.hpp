@@ -90,8 +90,8 @@ inline Crossings<T> crossings(accurate_policy, const Ray<T>& ray, const Cylinder
 }
 
 // Every point and radius of the cylinder, for the exact path's rescaling (detail/exact_crossings.hpp).
-template <class T, class F>
-inline void each_length(Cylinder<T>& c, F&& f)
+template <class S, class F, std::enable_if_t<detail::is_instance_v<S, Cylinder>, int> = 0>
+inline void each_length(S& c, F&& f)
 {
     f(c.p0), f(c.p1), f(c.radius);
 }

@@ -37,6 +37,17 @@ inline constexpr bool is_primitive_v = is_primitive<Prim>::value;
 template <class Prim>
 using scalar_t = typename Prim::scalar_type;
 
+namespace detail {
+// Whether S is P<T> or const P<T>: lets one each_length serve the walks that read a primitive's
+// lengths and the one that scales a copy of them.
+template <class S, template <class> class P>
+struct is_instance : std::false_type {};
+template <class T, template <class> class P>
+struct is_instance<P<T>, P> : std::true_type {};
+template <class S, template <class> class P>
+inline constexpr bool is_instance_v = is_instance<std::remove_const_t<S>, P>::value;
+}  // namespace detail
+
 template <class T>
 struct Crossing {
     T t;

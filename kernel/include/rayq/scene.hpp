@@ -86,26 +86,23 @@ struct SceneStore {
         // certain misses with batch::exactly_missed at about the filter's cost).
         constexpr std::size_t direct_up_to = 2;
         if constexpr (sphere || batch::bound_filter_exact_v<Policy, Prim>) {
-            if (items.size() <= direct_up_to) {
-                for (std::size_t i = 0; i < items.size(); ++i)
-                    if (valid[i] && visit(i)) return true;
+            if (items.size() > direct_up_to) {
+                using Filter = std::conditional_t<sphere, batch::SphereFilterRay<T>, batch::BoundFilterRay<T>>;
+                const Filter f(ray);
+                for (std::size_t g = 0; g < soa.groups(); ++g) {
+                    std::uint32_t m = 0;
+                    if constexpr (sphere) m = batch::sphere_candidates(f, ray.tmin, ray.tmax, soa, g);
+                    else m = batch::bound_candidates<Policy, batch::bound_test_v<Policy, Prim>>(f, ray.tmin, ray.tmax, soa, g);
+                    for (; m != 0; m &= m - 1) {
+                        const std::size_t i = g * decltype(soa)::width + static_cast<std::size_t>(lowest_bit(m));
+                        if (valid[i] && visit(i)) return true;
+                    }
+                }
                 return false;
             }
-            using Filter = std::conditional_t<sphere, batch::SphereFilterRay<T>, batch::BoundFilterRay<T>>;
-            const Filter f(ray);
-            for (std::size_t g = 0; g < soa.groups(); ++g) {
-                std::uint32_t m = 0;
-                if constexpr (sphere) m = batch::sphere_candidates(f, ray.tmin, ray.tmax, soa, g);
-                else m = batch::bound_candidates<Policy, batch::bound_test_v<Policy, Prim>>(f, ray.tmin, ray.tmax, soa, g);
-                for (; m != 0; m &= m - 1) {
-                    const std::size_t i = g * decltype(soa)::width + static_cast<std::size_t>(lowest_bit(m));
-                    if (valid[i] && visit(i)) return true;
-                }
-            }
-        } else {
-            for (std::size_t i = 0; i < items.size(); ++i)
-                if (valid[i] && visit(i)) return true;
         }
+        for (std::size_t i = 0; i < items.size(); ++i)
+            if (valid[i] && visit(i)) return true;
         return false;
     }
 

@@ -72,8 +72,8 @@ template <class T>
 inline Vec3<T> outward_normal(const Sphere<T>& s, const Vec3<T>& p, Part) { return p - s.center; }
 
 // Every point and radius of the sphere, for the exact path's rescaling (detail/exact_crossings.hpp).
-template <class T, class F>
-inline void each_length(Sphere<T>& s, F&& f)
+template <class S, class F, std::enable_if_t<detail::is_instance_v<S, Sphere>, int> = 0>
+inline void each_length(S& s, F&& f)
 {
     f(s.center), f(s.radius);
 }

@@ -210,6 +210,7 @@ public:
     {
         using B = first_t<T>;
         using W = decltype(B{}.v);
+        const W margin = W(1) - W(2) * unit_roundoff<W>;  // a difference of two W, rounded once
         const B a = bounded0_.a, b = bounded0_.df, c = bounded0_.f;
         B root;
         if (sign_a_ == 0) {
@@ -226,7 +227,6 @@ public:
             if (!(std::abs(q.v) > q.e)) return std::nullopt;
             B r0 = quotient(q, a), r1 = quotient(c, q);
             if (r1.v < r0.v) std::swap(r0, r1);
-            const W margin = W(1) - W(2) * unit_roundoff<W>;  // one rounding of the difference
             if (!((r1.v - r0.v) * margin > grow(r0.e + r1.e))) return std::nullopt;  // the intervals must say which root is which
             root = which == 0 ? r0 : r1;
         }
@@ -234,7 +234,6 @@ public:
         if (!std::isfinite(t) || t == T(0) || !std::isfinite(root.e)) return std::nullopt;
         // Midpoints between t and its neighbours are exact in W; the root must lie strictly between them.
         const W below = (W(next_down(t)) + W(t)) / W(2), above = (W(t) + W(next_up(t))) / W(2);
-        const W margin = W(1) - W(2) * unit_roundoff<W>;  // each difference is rounded once
         if ((root.v - below) * margin > root.e && (above - root.v) * margin > root.e) return t;
         return std::nullopt;
     }

@@ -328,6 +328,38 @@ inline std::optional<Crossings<scalar_t<Prim>>> scaled_crossings(const Ray<scala
     return out;
 }
 
+// What the exact path needs to know of a primitive's points and radii (each_length), in one walk.
+template <class T>
+struct LengthProfile {
+    T reach = T(0);    // the largest radius or distance from the ray's origin to a point: the unit
+    T largest = T(0);  // the largest and the smallest nonzero magnitude among those and the
+    T finest = std::numeric_limits<T>::infinity();  // point-to-point differences
+};
+
+template <class Prim>
+inline LengthProfile<scalar_t<Prim>> length_profile(const Ray<scalar_t<Prim>>& ray, const Prim& prim)
+{
+    using T = scalar_t<Prim>;
+    LengthProfile<T> out;
+    const auto see = [&](T x, bool from_origin) {
+        x = std::abs(x);
+        if (from_origin) out.reach = std::max(out.reach, x);
+        out.largest = std::max(out.largest, x);
+        if (x != T(0)) out.finest = std::min(out.finest, x);
+    };
+    const Vec3<T>* previous = nullptr;
+    each_length(prim, [&](const auto& x) {
+        if constexpr (std::is_same_v<std::decay_t<decltype(x)>, T>) {
+            see(x, true);
+        } else {
+            see(x.x - ray.origin.x, true), see(x.y - ray.origin.y, true), see(x.z - ray.origin.z, true);
+            if (previous) see(x.x - previous->x, false), see(x.y - previous->y, false), see(x.z - previous->z, false);
+            previous = &x;
+        }
+    });
+    return out;
+}
+
 // Whether the certificates that let a hit report t_error = one ulp (ExactQuadratic::interval_round
 // and newton_round: running error bounds) can be trusted: their error bounds are relative, and
 // a product that underflows breaks them. Products have up to twelve factors; with every nonzero
@@ -336,31 +368,14 @@ inline std::optional<Crossings<scalar_t<Prim>>> scaled_crossings(const Ray<scala
 // largest product (exact_curved_crossings has scaled the largest length and direction to ~1).
 // Found by the axial libFuzzer harness: a double cone of size 2^-124 seen from 0.06 away got a
 // certified t 10% off the exact root (CGAL) with t_error = 0.125.
-template <class Prim>
-inline bool certificates_hold(const Ray<scalar_t<Prim>>& ray, const Prim& prim)
+template <class T>
+inline bool certificates_hold(const Ray<T>& ray, const LengthProfile<T>& lengths)
 {
-    using T = scalar_t<Prim>;
-    Prim copy = prim;
-    T largest = T(0), finest = std::numeric_limits<T>::infinity();
-    const auto see = [&](T x) {
-        x = std::abs(x);
-        largest = std::max(largest, x);
-        if (x != T(0)) finest = std::min(finest, x);
-    };
-    const Vec3<T>* previous = nullptr;
-    each_length(copy, [&](auto& x) {
-        if constexpr (std::is_same_v<std::decay_t<decltype(x)>, T>) {
-            see(x);
-        } else {
-            see(x.x - ray.origin.x), see(x.y - ray.origin.y), see(x.z - ray.origin.z);
-            if (previous) see(x.x - previous->x), see(x.y - previous->y), see(x.z - previous->z);
-            previous = &x;
-        }
-    });
     const T dx = std::abs(ray.direction.x), dy = std::abs(ray.direction.y), dz = std::abs(ray.direction.z);
     const T least = std::max({dx, dy, dz}) * T(0x1p-60);  // multiplying by 2^-60 rounds down, if at all
     const bool direction_ok = (dx == T(0) || dx >= least) && (dy == T(0) || dy >= least) && (dz == T(0) || dz >= least);
-    return direction_ok && largest < std::numeric_limits<T>::infinity() && (largest == T(0) || finest >= largest * T(0x1p-60));
+    return direction_ok && lengths.largest < std::numeric_limits<T>::infinity() &&
+           (lengths.largest == T(0) || lengths.finest >= lengths.largest * T(0x1p-60));
 }
 
 // The same, with the inputs' units changed first when their magnitudes are far from 1. Expansions
@@ -373,17 +388,9 @@ inline bool certificates_hold(const Ray<scalar_t<Prim>>& ray, const Prim& prim)
 // which is undone on the rounded t.
 template <class Prim>
 inline Crossings<scalar_t<Prim>> exact_curved_crossings_in_unit(const Ray<scalar_t<Prim>>& ray, const Prim& prim, bool axial, bool capped,
-                                                                 CapEnds ends, int limit)
+                                                                 CapEnds ends, int limit, scalar_t<Prim> length)
 {
     using T = scalar_t<Prim>;
-    Prim scaled = prim;
-    T length = T(0);  // the largest distance from the origin to a point of the primitive, or radius
-    each_length(scaled, [&](auto& x) {
-        if constexpr (std::is_same_v<std::decay_t<decltype(x)>, T>)
-            length = std::max(length, std::abs(x));
-        else
-            length = std::max({length, std::abs(x.x - ray.origin.x), std::abs(x.y - ray.origin.y), std::abs(x.z - ray.origin.z)});
-    });
     const T direction = std::max({std::abs(ray.direction.x), std::abs(ray.direction.y), std::abs(ray.direction.z)});
     const bool in_range = (length == T(0) || within_exact_range(length)) && within_exact_range(direction);
     // A zero, infinite or NaN magnitude (a degenerate ray mapped into a Transformed's object
@@ -420,8 +427,9 @@ template <class Prim>
 inline Crossings<scalar_t<Prim>> exact_curved_crossings(const Ray<scalar_t<Prim>>& ray, const Prim& prim, bool axial, bool capped,
                                                          CapEnds ends, int limit)
 {
-    Crossings<scalar_t<Prim>> out = exact_curved_crossings_in_unit(ray, prim, axial, capped, ends, limit);
-    if (out.count > 0 && !certificates_hold(ray, prim))
+    const LengthProfile<scalar_t<Prim>> lengths = length_profile(ray, prim);
+    Crossings<scalar_t<Prim>> out = exact_curved_crossings_in_unit(ray, prim, axial, capped, ends, limit, lengths.reach);
+    if (out.count > 0 && !certificates_hold(ray, lengths))
         for (auto& c : out.item) c.rounded = false;
     return out;
 }
