@@ -87,23 +87,15 @@ bool accurate_may_hang(const Ray<scalar_t<Prim>>& ray, const Prim& prim)
 //  * on a sphere whose radius squared underflows (radius below sqrt(FLT_MIN / DBL_MIN)): e.g.
 //    radius = 2^-1074 centred on the ray's origin, where the exact ray leaves at t ~ 1e-323 and
 //    accurate misses (fixtures/fuzz/open/sphere/oracle-*);
-//  * on a float sphere of radius FLT_MAX seen from an origin 0.0118 outside it at z = FLT_MAX:
-//    with the window (0, inf) accurate answered t = 0x1.b2e8p-9, 73 ulps from the exact
-//    0.00331805432 (an exact rational computation), and with tmax narrowed to that answer it
-//    answered 0x1.b2e76ep-9, the correctly rounded root; so a scene of copies let the second copy
-//    win (found by the sphere libFuzzer harness; fixtures/fuzz/open/sphere/accurate-flt-max-sphere-t-off-73-ulps).
-//    Treated as known for spheres with any length within 2^8 of the largest T;
-//  * on a double sphere whose center has a subnormal coordinate (z = -2^-1074), seen from an
-//    origin on its surface, so the origin is 2^-1074 outside it (direction length 2^-90): accurate
-//    answered t = 2^-984 with t_error = inf where the exact entry is 0x1.a477d4p-985 (0.8212·2^-984), and
-//    0x1.20b3p-985 once tmax was narrowed to that answer, so a scene of copies let the second copy
-//    win (found by the sphere libFuzzer harness;
-//    fixtures/fuzz/open/sphere/accurate-subnormal-gap-t-depends-on-window). The axial harness then
-//    found the same on a double cone's cap: origin z = 2^-1074 above the cap plane z = 0,
-//    direction length 2^-96, t = 2^-978 with t_error = inf, another t in a narrowed window
-//    (fixtures/fuzz/open/axial/accurate-subnormal-gap-cap-t-depends-on-window). Treated as known,
-//    with the subnormal radius above, for spheres, cylinders and cones with a nonzero length or
-//    coordinate (primitive or origin) below sqrt(min) (a guessed class boundary: two reproducers);
+//    Treated as known, with the cases below that share its class, for spheres, cylinders and cones
+//    with a nonzero length or coordinate (primitive, origin or direction) below sqrt(min).
+//    Fixed in that class, kept as kernel tests (AccurateRegression.SubnormalGapTo*) and reproducers
+//    under fixtures/fuzz/{sphere,axial}/crash-accurate-subnormal-gap-*: an origin 2^-1074 outside a
+//    double sphere or above a cone's cap, seen along a direction of length ~2^-90, got a t that
+//    changed when tmax was narrowed to the first answer (the window's end could not be scaled into
+//    the exact path's unit). Fixed outside it: a float sphere of radius FLT_MAX answered 73 ulps
+//    off (AccurateRegression.FloatSphereOfRadiusFltMaxIsRounded;
+//    fixtures/fuzz/sphere/crash-accurate-flt-max-sphere-t-off-73-ulps);
 //  * on a cylinder or cone whose radius or axis is below 2^-80 of its distance from the ray's
 //    origin, or below DBL_MIN^(1/12) ~ 1.7e-26: its exact expansions (products of up to twelve
 //    factors) underflow, and a cap can be hit far outside its radius — a double cone of size 1e-39
@@ -150,12 +142,7 @@ bool accurate_known_wrong(const Ray<scalar_t<Prim>>& ray, const Prim& prim)
 {
     using T = scalar_t<Prim>;
     if constexpr (std::is_same_v<Prim, Sphere<T>>) {
-        // Lengths within 2^8 of the largest T: the class boundary is a guess from one reproducer.
-        const T near_max = std::ldexp(T(1), std::numeric_limits<T>::max_exponent - 8);
-        double largest = std::abs(double(prim.radius));
-        for (const Vec3<T>& v : {prim.center, ray.origin})
-            largest = std::max({largest, std::abs(double(v.x)), std::abs(double(v.y)), std::abs(double(v.z))});
-        return detail_known::has_tiny_coordinate(ray, prim) || largest >= double(near_max);
+        return detail_known::has_tiny_coordinate(ray, prim);
     } else if constexpr (std::is_same_v<Prim, Disk<T>>) {
         return !batch::normal_within_exact_range(prim.normal) || !batch::normal_within_exact_range(ray.direction);
     } else if constexpr (std::is_same_v<Prim, Parallelogram<T>>) {
