@@ -393,5 +393,15 @@ TEST(AccurateRegression, SubnormalGapToAConeCapIsWindowIndependent)
     expect_rounded_root_in_any_window(r, c, 0x1.f9cc7f00cf2b8p-979);
 }
 
+TEST(AccurateRegression, SubnormalRootAfterRescalingIsRoundedOnce)
+{
+    // A float sphere of radius 2^101 crossed at t = -0x1.4523246fdf514p-128 (CGAL): the rescaled
+    // root rounded to 24 bits is a midpoint of float's subnormal grid there, and unscaling it
+    // rounded again, to 0x1.45232p-128 (sphere libFuzzer harness).
+    const Ray<float> r{{0.0f, 0.0f, -0x1.9cf8p+0f}, {-0x1.a9996ap+26f, -0x1.999998p+26f, -0x1p-5f}, -0x1.caep-1f, 0x1.7ffffep-4f};
+    const Sphere<float> s{{0x1.3b8b5cp+101f, 0x1.26p-6f, 0.0f}, 0x1.3b8b5cp+101f};
+    expect_rounded_root_in_any_window(r, s, -0x1.452328p-128f);
+}
+
 }  // namespace
 }  // namespace rayq::test

@@ -289,16 +289,19 @@ inline Vec3<T> direction_near_unit(const Vec3<T>& n)
     return exact ? scaled : n;
 }
 
-// The crossings with every point and radius scaled by 2^-kl and the direction by 2^-kd (the window
-// follows: t' = t·2^(kd−kl)), their t left in the scaled unit; none when a scaling is inexact or a
-// root is not finite there.
+// The ray and the primitive with every point and radius scaled by 2^-kl and the direction by 2^-kd
+// (the window follows: t' = t·2^(kd−kl)); none when a scaling is inexact.
 template <class Prim>
-inline std::optional<Crossings<scalar_t<Prim>>> scaled_crossings(const Ray<scalar_t<Prim>>& ray, const Prim& prim, bool axial,
-                                                                  bool capped, CapEnds ends, int limit, int kl, int kd)
+struct Rescaled {
+    Ray<scalar_t<Prim>> ray;
+    Prim prim;
+};
+
+template <class Prim>
+inline std::optional<Rescaled<Prim>> rescaled(const Ray<scalar_t<Prim>>& ray, const Prim& prim, int kl, int kd)
 {
     using T = scalar_t<Prim>;
-    Prim scaled = prim;
-    Ray<T> r = ray;
+    Rescaled<Prim> out{ray, prim};
     bool exact = true;
     const auto length_unit = [&](auto& x) {
         if constexpr (std::is_same_v<std::decay_t<decltype(x)>, T>)
@@ -306,9 +309,9 @@ inline std::optional<Crossings<scalar_t<Prim>>> scaled_crossings(const Ray<scala
         else
             exact = exact && scale_exactly(x.x, -kl) && scale_exactly(x.y, -kl) && scale_exactly(x.z, -kl);
     };
-    each_length(scaled, length_unit);
-    length_unit(r.origin);
-    for (T* x : {&r.direction.x, &r.direction.y, &r.direction.z}) exact = exact && scale_exactly(*x, -kd);
+    each_length(out.prim, length_unit);
+    length_unit(out.ray.origin);
+    for (T* x : {&out.ray.direction.x, &out.ray.direction.y, &out.ray.direction.z}) exact = exact && scale_exactly(*x, -kd);
     // A window end that overflows when scaled (tmax = DBL_MAX for a tiny primitive, scaled up by
     // 2^115: found by the fuzz harnesses' scene invariant, where the unscaled fallback underflowed
     // and the scene's narrowed window got another answer) becomes ±inf: it is then at least
@@ -319,13 +322,51 @@ inline std::optional<Crossings<scalar_t<Prim>>> scaled_crossings(const Ray<scala
         if (std::isinf(y) && std::isfinite(x)) x = y;
         else exact = exact && scale_exactly(x, kd - kl);
     };
-    scale_end(r.tmin);
-    scale_end(r.tmax);
+    scale_end(out.ray.tmin);
+    scale_end(out.ray.tmax);
     if (!exact) return std::nullopt;
-    Crossings<T> out = exact_curved_crossings_unscaled(r, scaled, axial, capped, ends, limit);
-    for (const Crossing<T>& c : out)
+    return out;
+}
+
+// The crossings in the rescaled unit, their t left in it; none when a root is not finite there.
+template <class Prim>
+inline std::optional<Crossings<scalar_t<Prim>>> scaled_crossings(const std::optional<Rescaled<Prim>>& unit, bool axial, bool capped,
+                                                                  CapEnds ends, int limit)
+{
+    if (!unit) return std::nullopt;
+    Crossings<scalar_t<Prim>> out = exact_curved_crossings_unscaled(unit->ray, unit->prim, axial, capped, ends, limit);
+    for (const auto& c : out)
         if (!std::isfinite(c.t)) return std::nullopt;
     return out;
+}
+
+// t'·2^shift rounded to nearest, for a t' that is the exact root x' correctly rounded in the
+// rescaled unit. When the result is subnormal, ldexp rounds a second time, and double rounding
+// errs exactly when t' is a midpoint of the coarser subnormal grid (the sphere libFuzzer harness:
+// a float root at 0x1.4523246fp-128 came back as 0x1.45232p-128, 0.555 ulp off); the side of
+// t' on which x' lies then decides, read from which of the windows (t'⁻, t') and (t', t'⁺) the
+// exact path finds the crossing in (it decides windows exactly).
+template <class Prim>
+inline scalar_t<Prim> unscaled_t(const Crossing<scalar_t<Prim>>& c, int shift, const Rescaled<Prim>& unit, bool axial, bool capped,
+                                 CapEnds ends)
+{
+    using T = scalar_t<Prim>;
+    const T t = std::ldexp(c.t, shift);
+    if (!(std::abs(t) < std::numeric_limits<T>::min()) || std::ldexp(t, -shift) == c.t) return t;
+    const T other = std::ldexp(t, -shift) < c.t ? next_up(t) : next_down(t);
+    // Both neighbours and their sum are multiples of the coarse spacing, at least two ulps of
+    // t' here, so the sum is exact.
+    if (std::ldexp(t, -shift) + std::ldexp(other, -shift) != T(2) * c.t) return t;
+    const auto crossing_in = [&](T lo, T hi) {
+        Rescaled<Prim> window = unit;
+        window.ray.tmin = lo, window.ray.tmax = hi;
+        for (const Crossing<T>& x : exact_curved_crossings_unscaled(window.ray, window.prim, axial, capped, ends, 2))
+            if (x.part == c.part && x.entering == c.entering) return true;
+        return false;
+    };
+    if (crossing_in(next_down(c.t), c.t)) return std::min(t, other);
+    if (crossing_in(c.t, next_up(c.t))) return std::max(t, other);
+    return t;  // x' = t': a true tie, and ldexp rounded it to even
 }
 
 // What the exact path needs to know of a primitive's points and radii (each_length), in one walk.
@@ -407,18 +448,20 @@ inline Crossings<scalar_t<Prim>> exact_curved_crossings_in_unit(const Ray<scalar
     // exactly (tmax narrowed to such a root: a scene of copies does that; the sphere and axial
     // harnesses found answers that changed with the window, kernel tests SubnormalGapTo*).
     int shift = kl - kd;  // t = t'·2^shift
-    std::optional<Crossings<T>> out = scaled_crossings(ray, prim, axial, capped, ends, limit, kl, kd);
+    std::optional<Rescaled<Prim>> unit = rescaled(ray, prim, kl, kd);
+    std::optional<Crossings<T>> out = scaled_crossings(unit, axial, capped, ends, limit);
     const auto lost_bits = [](const Crossings<T>& c) {
         for (const Crossing<T>& x : c)
             if (std::abs(x.t) < std::numeric_limits<T>::min()) return true;
         return false;
     };
     if (!out || lost_bits(*out)) {
-        if (auto lifted = scaled_crossings(ray, prim, axial, capped, ends, limit, kl - 60, kd + 60)) out = lifted, shift -= 120;
+        std::optional<Rescaled<Prim>> lifted_unit = rescaled(ray, prim, kl - 60, kd + 60);
+        if (auto lifted = scaled_crossings(lifted_unit, axial, capped, ends, limit)) out = lifted, unit = lifted_unit, shift -= 120;
     }
     if (!out) return exact_curved_crossings_unscaled(ray, prim, axial, capped, ends, limit);
     for (Crossing<T>& c : out->item) {
-        c.t = std::ldexp(c.t, shift);  // exact unless subnormal or beyond the largest float
+        c.t = unscaled_t(c, shift, *unit, axial, capped, ends);  // exact unless subnormal or beyond the largest float
         if (!(c.t > ray.tmin)) c.t = next_up(ray.tmin);
         if (!(c.t < ray.tmax)) c.t = next_down(ray.tmax);
     }
