@@ -192,18 +192,18 @@ inline Hit<scalar_t<Prim>> first_hit(Policy policy, const Ray<scalar_t<Prim>>& r
 // crossings() takes a trailing limit (the accurate curved primitives, where every crossing costs an
 // exactly rounded root) computes no more than that; the others compute all (at most two).
 template <class Policy, class Prim>
-inline auto crossings_up_to(Policy policy, const Ray<scalar_t<Prim>>& ray, const Prim& prim, int limit, int)
+RAYQ_INLINE auto crossings_up_to(Policy policy, const Ray<scalar_t<Prim>>& ray, const Prim& prim, int limit, int)
     -> decltype(crossings(policy, ray, prim, limit))
 {
     return crossings(policy, ray, prim, limit);
 }
 template <class Policy, class Prim>
-inline Crossings<scalar_t<Prim>> crossings_up_to(Policy policy, const Ray<scalar_t<Prim>>& ray, const Prim& prim, int, long)
+RAYQ_INLINE Crossings<scalar_t<Prim>> crossings_up_to(Policy policy, const Ray<scalar_t<Prim>>& ray, const Prim& prim, int, long)
 {
     return crossings(policy, ray, prim);
 }
 template <class Policy, class Prim>
-inline Crossings<scalar_t<Prim>> leading_crossings(Policy policy, const Ray<scalar_t<Prim>>& ray, const Prim& prim)
+RAYQ_INLINE Crossings<scalar_t<Prim>> leading_crossings(Policy policy, const Ray<scalar_t<Prim>>& ray, const Prim& prim)
 {
     return crossings_up_to(policy, ray, prim, 1, 0);
 }
@@ -211,7 +211,7 @@ inline Crossings<scalar_t<Prim>> leading_crossings(Policy policy, const Ray<scal
 // The first crossing inside (tmin, tmax), if any: the cheap core that closest-hit searches over
 // many primitives run before building one hit record (ray and primitive already accepted).
 template <class Policy, class Prim>
-inline std::optional<Crossing<scalar_t<Prim>>> first_crossing_in_window(Policy policy, const Ray<scalar_t<Prim>>& ray,
+RAYQ_INLINE std::optional<Crossing<scalar_t<Prim>>> first_crossing_in_window(Policy policy, const Ray<scalar_t<Prim>>& ray,
                                                                         const Prim& prim)
 {
     for (const auto& c : leading_crossings(policy, ray, prim))
