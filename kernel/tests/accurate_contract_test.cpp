@@ -403,5 +403,14 @@ TEST(AccurateRegression, SubnormalRootAfterRescalingIsRoundedOnce)
     expect_rounded_root_in_any_window(r, s, -0x1.452328p-128f);
 }
 
+TEST(AccurateRegression, LiftedRetryRaisesTheDirectionUnitByWhatItCanTake)
+{
+    // Root 0x1.7a8fe83083098p-146 (CGAL). The rescaled root fell below float's range, and the
+    // lifted retry could not scale the -2^-52 component by 2^-108 exactly: accurate answered 2^-96.
+    const Ray<float> r{{0.0f, 0x1.2d58p+0f, 0x1.b1a8p+1f}, {0x1.1ba0fp+48f, -0x1.c0a7fep+0f, -0x1.1588cap-52f}, 0.0f, 0x1.cp-1f};
+    const Sphere<float> s{{0x1.3b8b5cp+101f, -0x1.b208p+1f, 0x1.48p-8f}, 0x1.3b8b5cp+101f};
+    expect_rounded_root_in_any_window(r, s, 0x1.8p-146f);
+}
+
 }  // namespace
 }  // namespace rayq::test

@@ -455,9 +455,17 @@ inline Crossings<scalar_t<Prim>> exact_curved_crossings_in_unit(const Ray<scalar
             if (std::abs(x.t) < std::numeric_limits<T>::min()) return true;
         return false;
     };
+    // The direction's unit is raised by less where a small direction component cannot take all of
+    // 2^60 exactly (a float direction (2^48, -1.75, -2^-52) toward a sphere of radius 2^101, root
+    // 2^-146: found by the sphere libFuzzer harness).
     if (!out || lost_bits(*out)) {
-        std::optional<Rescaled<Prim>> lifted_unit = rescaled(ray, prim, kl - 60, kd + 60);
-        if (auto lifted = scaled_crossings(lifted_unit, axial, capped, ends, limit)) out = lifted, unit = lifted_unit, shift -= 120;
+        for (const int raise : {60, 30, 15}) {
+            std::optional<Rescaled<Prim>> lifted_unit = rescaled(ray, prim, kl - 60, kd + raise);
+            if (auto lifted = scaled_crossings(lifted_unit, axial, capped, ends, limit); lifted && !lost_bits(*lifted)) {
+                out = lifted, unit = lifted_unit, shift -= 60 + raise;
+                break;
+            }
+        }
     }
     if (!out) return exact_curved_crossings_unscaled(ray, prim, axial, capped, ends, limit);
     for (Crossing<T>& c : out->item) {
