@@ -412,5 +412,14 @@ TEST(AccurateRegression, LiftedRetryRaisesTheDirectionUnitByWhatItCanTake)
     expect_rounded_root_in_any_window(r, s, 0x1.8p-146f);
 }
 
+TEST(AccurateRegression, LiftedRetryLowersTheLengthUnitPastASubnormalDirection)
+{
+    // Root 0x1.493bdd669f0e7p-89 (CGAL). The direction's subnormal component cannot take a raised
+    // unit at all; accurate answered 2^-35.
+    const Ray<float> r{{0.0f, 0x1.8p-7f, 0x1.425p+0f}, {0x1p-13f, 0x1.5807bp-128f, 0.0f}};
+    const Sphere<float> s{{0x1.3b8b5cp+101f, 0x1.26p-6f, 0.0f}, 0x1.3b8b5cp+101f};
+    expect_rounded_root_in_any_window(r, s, 0x1.493bdep-89f);
+}
+
 }  // namespace
 }  // namespace rayq::test

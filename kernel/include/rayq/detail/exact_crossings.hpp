@@ -457,12 +457,14 @@ inline Crossings<scalar_t<Prim>> exact_curved_crossings_in_unit(const Ray<scalar
     };
     // The direction's unit is raised by less where a small direction component cannot take all of
     // 2^60 exactly (a float direction (2^48, -1.75, -2^-52) toward a sphere of radius 2^101, root
-    // 2^-146: found by the sphere libFuzzer harness).
+    // 2^-146: found by the sphere libFuzzer harness), and not at all where one is subnormal
+    // (0x1.5807bp-128 beside 2^-13, same sphere, root 2^-89): the lengths' unit is then lowered by
+    // 2^80, which keeps products of twelve lengths below 2^972.
     if (!out || lost_bits(*out)) {
-        for (const int raise : {60, 30, 15}) {
-            std::optional<Rescaled<Prim>> lifted_unit = rescaled(ray, prim, kl - 60, kd + raise);
+        for (const auto& [lower, raise] : {std::pair{60, 60}, std::pair{60, 30}, std::pair{60, 15}, std::pair{80, 0}}) {
+            std::optional<Rescaled<Prim>> lifted_unit = rescaled(ray, prim, kl - lower, kd + raise);
             if (auto lifted = scaled_crossings(lifted_unit, axial, capped, ends, limit); lifted && !lost_bits(*lifted)) {
-                out = lifted, unit = lifted_unit, shift -= 60 + raise;
+                out = lifted, unit = lifted_unit, shift -= lower + raise;
                 break;
             }
         }

@@ -120,13 +120,12 @@ bool accurate_may_hang(const Ray<scalar_t<Prim>>& ray, const Prim& prim)
 //    (fixtures/fuzz/open/flat/accurate-parallelogram-subnormal-edge-hit-outside; same harness).
 //    Known for disks, parallelograms and triangles whose normal, edges or ray direction leave the
 //    exact range (normal_within_exact_range).
-//  * on a float sphere of radius 2^101 whose surface passes ~2^-102 from the origin, seen along
-//    (2^-13, 0x1.5807bp-128, 0): the rescaled root falls below float's range, and the retry that
-//    lifts it (exact_crossings.hpp) cannot scale the subnormal direction component exactly, so
-//    accurate answers 2^-35 for a root near 2^-89, and the exact one in a narrowed window (found
-//    by the sphere libFuzzer harness; fixtures/fuzz/open/sphere/accurate-rescaled-root-underflow-
-//    subnormal-direction). Covered by has_tiny_coordinate, which now also looks at the direction;
-//    the fix is to round in the unscaled exponent range (for float: the exact path in double).
+//    Fixed, with the subnormal direction still counted in has_tiny_coordinate (the class may
+//    hold more): a float sphere of radius 2^101 whose surface passes ~2^-102 from the origin,
+//    seen along (2^-13, 0x1.5807bp-128, 0), got 2^-35 for a root near 2^-89 (the lifted retry
+//    could not scale the subnormal component; it now lowers the lengths' unit instead; kernel
+//    test AccurateRegression.LiftedRetryLowersTheLengthUnitPastASubnormalDirection, reproducer
+//    fixtures/fuzz/sphere/crash-accurate-rescaled-root-underflow-subnormal-direction);
 //  * on a plane whose origin or direction has coordinates near DBL_MAX or 2^511 beside ordinary
 //    ones: t 7 to 9 ulps from CGAL's root (flat primitives are not rescaled as curved ones are,
 //    and the exact search's expansions overflow). Found when accurate's t_error became one ulp
