@@ -421,5 +421,30 @@ TEST(AccurateRegression, LiftedRetryLowersTheLengthUnitPastASubnormalDirection)
     expect_rounded_root_in_any_window(r, s, 0x1.493bdep-89f);
 }
 
+TEST(AccurateRegression, TinyCylinderRootIsWindowIndependent)
+{
+    // A cylinder of radius 2^-511 seen from inside it: t was 1,325 ulps lower once tmax was
+    // narrowed (axial libFuzzer harness). CGAL's root: -0x1.6321d8cddc52cp-414.
+    const Ray<double> r{{0x1p-512, -0x1.cb32p+1, 0x1p-511}, {0.0, 0x1.81f706aa3748cp-97, -0x1.711456659d426p-98},
+                        -0x1.5c5c5c5c5c5c5p+93, 0x0.00000c5c5c5c5p-1022};
+    const Cylinder<double> c{{0.0, -0x1.ccp+1, 0x1p-511}, {0x1p-511, -0x1.ca64p+1, 0x1p-511}, 0x1p-511, Caps::both};
+    expect_rounded_root_in_any_window(r, c, -0x1.6321d8cddc52cp-414);
+}
+
+TEST(AccurateRegression, DisksWithNormalsOf2p512BesideSubnormalsAreMissed)
+{
+    // Lines that pass the disks (CGAL: miss) got hits from products beyond double's range (flat
+    // libFuzzer harness).
+    const Ray<double> r2{{0x1.195b7039d82fep+2, 0x1.df34p+1, 0x1.96c3b46b93f5dp+3},
+                         {-0x1.abf8d60de8c9dp-38, -0x1.55cb22a589ce6p-38, -0x1.7b12e571c99aep-40}};
+    const Disk<double> d2{{0x1.6e2cp+1, -0x1.8ed8p+1, 0x1.8cp+3}, {-0x0.0000000000001p-1022, 0x1.2ddp+1, 0x1.fffffffffffffp+511}, 0x1p-1};
+    EXPECT_FALSE(intersect(accurate, r2, d2));
+    const Ray<double> r3{{0.0, -0x1.030cd6113d878p+4, 0x1.c68c6ddcc0909p+2},
+                         {-0x1.00ecc91b594e3p-40, 0x1.2cc6cc9e79e14p-39, -0x1.080df99173a9dp-40}};
+    const Disk<double> d3{{0x1p+1, -0x1.e4db4f6c4eca2p-117, -0x1.d9647b1d3e20ap-213},
+                          {0x1.fffffffffffffp+511, -0x0.0000000000001p-1022, -0x1.a22b26ca64925p+45}, 0x1.12dp+1};
+    EXPECT_FALSE(intersect(accurate, r3, d3));
+}
+
 }  // namespace
 }  // namespace rayq::test

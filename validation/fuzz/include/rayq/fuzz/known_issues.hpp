@@ -102,15 +102,18 @@ bool accurate_may_hang(const Ray<scalar_t<Prim>>& ray, const Prim& prim)
 //    seen from 8 units away reported a cap1 hit 8 units from the cap, with a finite t_error
 //    (fixtures/fuzz/open/axial/accurate-cap-hit-far-outside-tiny-cone; found by the stream
 //    invariant, batch/bounding_sphere.hpp keeps such lanes so that batch and scalar still agree).
-//    Its t then also depends on the window: a cylinder of radius 2^-511 at distance ~3.6 gave a
-//    t 1,325 ulps lower when tmax was narrowed to the first answer, so a scene of copies let the
-//    second copy win (fixtures/fuzz/open/axial/accurate-tiny-cylinder-t-depends-on-window; the
-//    scene invariant checks such cases with one copy).
+//    Fixed in this class: a cylinder of radius 2^-511 at distance ~3.6 gave a t 1,325 ulps lower
+//    when tmax was narrowed to the first answer (kernel test
+//    AccurateRegression.TinyCylinderRootIsWindowIndependent, reproducer
+//    fixtures/fuzz/axial/crash-accurate-tiny-cylinder-t-depends-on-window).
 //  * on a disk whose normal cannot be brought near unit length exactly (a component of 2^512 beside
 //    a subnormal one) or whose components then still span beyond 2^±64 (2^-511 beside 2^-1074):
 //    products in the exact rim test leave double's range, and a hit 24 units from a disk of radius
 //    3.3 was reported (fixtures/fuzz/open/flat/accurate-disk-*; found by the scene and stream
-//    invariants, batch/bounding_sphere.hpp keeps such lanes: normal_within_exact_range); and the
+//    invariants, batch/bounding_sphere.hpp keeps such lanes: normal_within_exact_range; two of
+//    the four reproducers now miss as CGAL does: kernel test
+//    AccurateRegression.DisksWithNormalsOf2p512BesideSubnormalsAreMissed, reproducers
+//    fixtures/fuzz/flat/crash-accurate-disk-normal-2p512-beside-subnormal-{2,3}); and the
 //    same for the ray's direction: a direction (2^-4, -2.09, -2^-902) starting in a double disk's
 //    plane, one unit from a disk of radius 0.05, got a hit at t = 0 with t_error = inf
 //    (fixtures/fuzz/open/flat/accurate-disk-tiny-direction-component-hit-far-outside; found by the
