@@ -446,5 +446,15 @@ TEST(AccurateRegression, DisksWithNormalsOf2p512BesideSubnormalsAreMissed)
     EXPECT_FALSE(intersect(accurate, r3, d3));
 }
 
+TEST(AccurateRegression, LiftedRetryReachesTheEdgeOfTheExactRange)
+{
+    // A float sphere of radius FLT_MAX whose surface passes 2^-124 from the origin, seen along
+    // 2^-10: the root 0x1.ce38e55c71c8fp-114 (CGAL) needs a lift of 2^125; 2^120 left it subnormal
+    // and accurate answered 2^-12 (sphere libFuzzer harness).
+    const Ray<float> r{{0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 0x1.2p-10f}};
+    const Sphere<float> s{{0x1p+3f, 0x1p+0f, 0x1.fffffep+127f}, 0x1.fffffep+127f};
+    expect_rounded_root_in_any_window(r, s, 0x1.ce38e6p-114f);
+}
+
 }  // namespace
 }  // namespace rayq::test

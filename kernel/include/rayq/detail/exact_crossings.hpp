@@ -443,8 +443,10 @@ inline Crossings<scalar_t<Prim>> exact_curved_crossings_in_unit(const Ray<scalar
     // range there loses bits that unscaling cannot restore (a float sphere of radius 2^101 with
     // the origin 2^-102 outside it, seen along 2^-13: t = 2^-89 became 2^-203, rounded to 0 and
     // reported as 2^-35; found by the sphere libFuzzer harness). Such roots are solved again with
-    // the lengths' unit lowered and the direction's raised by 2^60 each (every magnitude stays
-    // within the exact range), which lifts them by 2^120. So is a window whose end cannot be scaled
+    // the lengths' unit lowered and the direction's raised by 2^63 each (the largest length and
+    // direction component stay within the exact range), which lifts them by 2^126: as far as the
+    // exact range allows (a float sphere of radius FLT_MAX crossed at t = 2^-114 along 2^-10
+    // needed 2^125; found by the sphere libFuzzer harness). So is a window whose end cannot be scaled
     // exactly (tmax narrowed to such a root: a scene of copies does that; the sphere and axial
     // harnesses found answers that changed with the window, kernel tests SubnormalGapTo*).
     int shift = kl - kd;  // t = t'·2^shift
@@ -456,12 +458,12 @@ inline Crossings<scalar_t<Prim>> exact_curved_crossings_in_unit(const Ray<scalar
         return false;
     };
     // The direction's unit is raised by less where a small direction component cannot take all of
-    // 2^60 exactly (a float direction (2^48, -1.75, -2^-52) toward a sphere of radius 2^101, root
+    // 2^63 exactly (a float direction (2^48, -1.75, -2^-52) toward a sphere of radius 2^101, root
     // 2^-146: found by the sphere libFuzzer harness), and not at all where one is subnormal
     // (0x1.5807bp-128 beside 2^-13, same sphere, root 2^-89): the lengths' unit is then lowered by
     // 2^80, which keeps products of twelve lengths below 2^972.
     if (!out || lost_bits(*out)) {
-        for (const auto& [lower, raise] : {std::pair{60, 60}, std::pair{60, 30}, std::pair{60, 15}, std::pair{80, 0}}) {
+        for (const auto& [lower, raise] : {std::pair{63, 63}, std::pair{63, 31}, std::pair{63, 15}, std::pair{80, 0}}) {
             std::optional<Rescaled<Prim>> lifted_unit = rescaled(ray, prim, kl - lower, kd + raise);
             if (auto lifted = scaled_crossings(lifted_unit, axial, capped, ends, limit); lifted && !lost_bits(*lifted)) {
                 out = lifted, unit = lifted_unit, shift -= lower + raise;
