@@ -129,6 +129,15 @@ bool accurate_may_hang(const Ray<scalar_t<Prim>>& ray, const Prim& prim)
 //    could not scale the subnormal component; it now lowers the lengths' unit instead; kernel
 //    test AccurateRegression.LiftedRetryLowersTheLengthUnitPastASubnormalDirection, reproducer
 //    fixtures/fuzz/sphere/crash-accurate-rescaled-root-underflow-subnormal-direction);
+//  * on a float sphere with a length within 2^8 of the largest float whose root lies far below
+//    float's normal range relative to it: radius 2^127 seen along 3.54 from an origin ~2^-129·3.54
+//    outside it, exact root 0x1.7081d7a5p-129, accurate answered 2^-24 and another t in a
+//    narrowed window (found by the sphere libFuzzer harness after the retry's lift grew to 2^126,
+//    the most the exact range allows in float's unit;
+//    fixtures/fuzz/open/sphere/accurate-root-below-float-range-after-largest-lift). The fix is to
+//    solve float inputs in double's unit and round once to float (the midpoint test of
+//    exact_crossings.hpp's unscaled_t). Treated as known for spheres with any length within 2^8 of
+//    the largest T;
 //  * on a plane whose origin or direction has coordinates near DBL_MAX or 2^511 beside ordinary
 //    ones: t 7 to 9 ulps from CGAL's root (flat primitives are not rescaled as curved ones are,
 //    and the exact search's expansions overflow). Found when accurate's t_error became one ulp
@@ -144,7 +153,11 @@ bool accurate_known_wrong(const Ray<scalar_t<Prim>>& ray, const Prim& prim)
 {
     using T = scalar_t<Prim>;
     if constexpr (std::is_same_v<Prim, Sphere<T>>) {
-        return detail_known::has_tiny_coordinate(ray, prim);
+        const T near_max = std::ldexp(T(1), std::numeric_limits<T>::max_exponent - 8);
+        double largest = std::abs(double(prim.radius));
+        for (const Vec3<T>& v : {prim.center, ray.origin})
+            largest = std::max({largest, std::abs(double(v.x)), std::abs(double(v.y)), std::abs(double(v.z))});
+        return detail_known::has_tiny_coordinate(ray, prim) || largest >= double(near_max);
     } else if constexpr (std::is_same_v<Prim, Disk<T>>) {
         return !batch::normal_within_exact_range(prim.normal) || !batch::normal_within_exact_range(ray.direction);
     } else if constexpr (std::is_same_v<Prim, Parallelogram<T>>) {
