@@ -456,5 +456,16 @@ TEST(AccurateRegression, LiftedRetryReachesTheEdgeOfTheExactRange)
     expect_rounded_root_in_any_window(r, s, 0x1.ce38e6p-114f);
 }
 
+// The float cases above found the lifted retry's limits; float inputs far from 1 are now solved
+// in double's unit (exact_crossings.hpp, float_crossings_in_double), and they stay as regressions.
+TEST(AccurateRegression, FloatRootBelowFloatRangeOfASphereOfRadius2p127IsRounded)
+{
+    // Root 0x1.7081d7a5f6908p-129 (CGAL): below float's normal range even after the largest lift
+    // float's unit allows (2^126); accurate answered 2^-24 (sphere libFuzzer harness).
+    const Ray<float> r{{0x1.fffffep+126f, 0x1.d1cp-2f, -0x1p-5f}, {-0x1.c5c808p+1f, 0.0f, 0.0f}};
+    const Sphere<float> s{{0.0f, 0.0f, 0x1.8p+0f}, 0x1.fffffep+126f};
+    expect_rounded_root_in_any_window(r, s, 0x1.7081dp-129f);
+}
+
 }  // namespace
 }  // namespace rayq::test

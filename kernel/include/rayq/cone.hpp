@@ -24,6 +24,10 @@ struct Cone {
     Caps caps = Caps::none;
 };
 
+// The same cone in another scalar type (exact when widening, float → double).
+template <class U, class T>
+constexpr Cone<U> scalar_cast(const Cone<T>& c) { return {scalar_cast<U>(c.p0), U(c.r0), scalar_cast<U>(c.p1), U(c.r1), c.caps}; }
+
 template <class T>
 struct is_primitive<Cone<T>> : std::true_type {};
 

@@ -31,6 +31,10 @@ struct Cylinder {
     }
 };
 
+// The same cylinder in another scalar type (exact when widening, float → double).
+template <class U, class T>
+constexpr Cylinder<U> scalar_cast(const Cylinder<T>& c) { return {scalar_cast<U>(c.p0), scalar_cast<U>(c.p1), U(c.radius), c.caps}; }
+
 template <class T>
 struct is_primitive<Cylinder<T>> : std::true_type {};
 

@@ -15,6 +15,12 @@ struct Ray {
     T tmax = std::numeric_limits<T>::infinity();
 };
 
+template <class U, class T>
+constexpr Ray<U> scalar_cast(const Ray<T>& ray)
+{
+    return {scalar_cast<U>(ray.origin), scalar_cast<U>(ray.direction), U(ray.tmin), U(ray.tmax)};
+}
+
 template <class T>
 constexpr Vec3<T> point_at(const Ray<T>& ray, T t) { return ray.origin + t * ray.direction; }
 

@@ -19,6 +19,10 @@ struct Sphere {
     T radius;
 };
 
+// The same sphere in another scalar type (exact when widening, float → double).
+template <class U, class T>
+constexpr Sphere<U> scalar_cast(const Sphere<T>& s) { return {scalar_cast<U>(s.center), U(s.radius)}; }
+
 template <class T>
 struct is_primitive<Sphere<T>> : std::true_type {};
 

@@ -33,6 +33,9 @@ template <class T> RAYQ_INLINE constexpr T length_squared(const Vec3<T>& a) { re
 template <class T> RAYQ_INLINE T length(const Vec3<T>& a) { return std::sqrt(dot(a, a)); }
 template <class T> RAYQ_INLINE Vec3<T> normalize(const Vec3<T>& a) { return a / length(a); }
 
+// The same vector in another scalar type (exact when widening, float → double).
+template <class U, class T> RAYQ_INLINE constexpr Vec3<U> scalar_cast(const Vec3<T>& a) { return {U(a.x), U(a.y), U(a.z)}; }
+
 template <class T> RAYQ_INLINE bool isfinite(const Vec3<T>& a)
 {
     return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z);

@@ -340,33 +340,49 @@ inline std::optional<Crossings<scalar_t<Prim>>> scaled_crossings(const std::opti
     return out;
 }
 
-// t'·2^shift rounded to nearest, for a t' that is the exact root x' correctly rounded in the
-// rescaled unit. When the result is subnormal, ldexp rounds a second time, and double rounding
-// errs exactly when t' is a midpoint of the coarser subnormal grid (the sphere libFuzzer harness:
-// a float root at 0x1.4523246fp-128 came back as 0x1.45232p-128, 0.555 ulp off); the side of
-// t' on which x' lies then decides, read from which of the windows (t'⁻, t') and (t', t'⁺) the
-// exact path finds the crossing in (it decides windows exactly).
+// A root x rounded to a coarser grid (a smaller unit's subnormals, or float from double) from
+// `fine`, its correct rounding on the finer one: rounding twice errs exactly when `fine` is a
+// midpoint of the coarse grid (the sphere libFuzzer harness: a float root at 0x1.4523246fp-128,
+// rescaled and rounded to 24 bits, came back from ldexp as 0x1.45232p-128, 0.555 ulp off).
+// The side of `fine` on which x lies then decides, read from which of the windows
+// (fine⁻, fine) and (fine, fine⁺) `crossing_in` finds the crossing in: the exact path decides
+// windows exactly.
+template <class Coarse, class Fine, class ToCoarse, class ToFine, class CrossingIn>
+inline Coarse rounded_once(Fine fine, ToCoarse to_coarse, ToFine to_fine, CrossingIn crossing_in)
+{
+    const Coarse t = to_coarse(fine);
+    if (to_fine(t) == fine) return t;
+    const Coarse other = to_fine(t) < fine ? next_up(t) : next_down(t);
+    // Both neighbours are on the coarse grid, at least two fine ulps apart, so their sum is exact.
+    if (to_fine(t) + to_fine(other) != Fine(2) * fine) return t;
+    if (crossing_in(next_down(fine), fine)) return std::min(t, other);
+    if (crossing_in(fine, next_up(fine))) return std::max(t, other);
+    return t;  // x = fine: a true tie, and to_coarse rounded it to even
+}
+
+// Whether `found` holds crossing c's part and direction.
+template <class T>
+inline bool holds(const Crossings<T>& found, const Crossing<T>& c)
+{
+    for (const Crossing<T>& x : found)
+        if (x.part == c.part && x.entering == c.entering) return true;
+    return false;
+}
+
+// t'·2^shift rounded to nearest, for a t' that is the exact root correctly rounded in the
+// rescaled unit (ldexp rounds a second time when the result is subnormal).
 template <class Prim>
 inline scalar_t<Prim> unscaled_t(const Crossing<scalar_t<Prim>>& c, int shift, const Rescaled<Prim>& unit, bool axial, bool capped,
                                  CapEnds ends)
 {
     using T = scalar_t<Prim>;
-    const T t = std::ldexp(c.t, shift);
-    if (!(std::abs(t) < std::numeric_limits<T>::min()) || std::ldexp(t, -shift) == c.t) return t;
-    const T other = std::ldexp(t, -shift) < c.t ? next_up(t) : next_down(t);
-    // Both neighbours and their sum are multiples of the coarse spacing, at least two ulps of
-    // t' here, so the sum is exact.
-    if (std::ldexp(t, -shift) + std::ldexp(other, -shift) != T(2) * c.t) return t;
-    const auto crossing_in = [&](T lo, T hi) {
-        Rescaled<Prim> window = unit;
-        window.ray.tmin = lo, window.ray.tmax = hi;
-        for (const Crossing<T>& x : exact_curved_crossings_unscaled(window.ray, window.prim, axial, capped, ends, 2))
-            if (x.part == c.part && x.entering == c.entering) return true;
-        return false;
-    };
-    if (crossing_in(next_down(c.t), c.t)) return std::min(t, other);
-    if (crossing_in(c.t, next_up(c.t))) return std::max(t, other);
-    return t;  // x' = t': a true tie, and ldexp rounded it to even
+    return rounded_once<T>(
+        c.t, [&](T x) { return std::ldexp(x, shift); }, [&](T x) { return std::ldexp(x, -shift); },
+        [&](T lo, T hi) {
+            Ray<T> window = unit.ray;
+            window.tmin = lo, window.tmax = hi;
+            return holds(exact_curved_crossings_unscaled(window, unit.prim, axial, capped, ends, 2), c);
+        });
 }
 
 // What the exact path needs to know of a primitive's points and radii (each_length), in one walk.
@@ -428,17 +444,31 @@ inline bool certificates_hold(const Ray<T>& ray, const LengthProfile<T>& lengths
 // 1. The residuals are homogeneous, so every sign is unchanged, and t' = t·2^(kd−kl) exactly,
 // which is undone on the rounded t.
 template <class Prim>
+inline Crossings<float> float_crossings_in_double(const Ray<float>& ray, const Prim& prim, bool axial, bool capped, CapEnds ends, int limit);
+
+template <class Prim>
 inline Crossings<scalar_t<Prim>> exact_curved_crossings_in_unit(const Ray<scalar_t<Prim>>& ray, const Prim& prim, bool axial, bool capped,
                                                                  CapEnds ends, int limit, scalar_t<Prim> length)
 {
     using T = scalar_t<Prim>;
     const T direction = std::max({std::abs(ray.direction.x), std::abs(ray.direction.y), std::abs(ray.direction.z)});
     const bool in_range = (length == T(0) || within_exact_range(length)) && within_exact_range(direction);
+    if constexpr (std::is_same_v<T, float>) {
+        // Float inputs are solved in double's unit instead: every float scaled by the powers of
+        // two the unit needs stays exact in double (a float difference that overflows, too), and a
+        // float problem's roots then land inside double's normal range, so the rescaled roots lose
+        // no bits and one rounding to float remains (rounded_once). Rescaling within float's
+        // range could not lift every root above float's subnormals: a float sphere of radius 2^127
+        // with its root at 0x1.7081d7a5p-129 got 2^-24 (found by the sphere libFuzzer harness).
+        if (!in_range && direction > T(0) && std::isfinite(direction)) return float_crossings_in_double(ray, prim, axial, capped, ends, limit);
+    }
     // A zero, infinite or NaN magnitude (a degenerate ray mapped into a Transformed's object
     // space) has no unit to change.
     const bool scalable = std::isfinite(length) && direction > T(0) && std::isfinite(direction);
     if (in_range || !scalable) return exact_curved_crossings_unscaled(ray, prim, axial, capped, ends, limit);
     const int kl = length == T(0) ? 0 : std::ilogb(length), kd = std::ilogb(direction);
+    // Only double inputs come here (float ones are widened above); the findings cited below were
+    // float inputs before they were, and double's extremes give the same shapes 2^900 further out.
     // The rescaled problem's roots are t·2^(kd−kl), rounded in T: one that falls below T's normal
     // range there loses bits that unscaling cannot restore (a float sphere of radius 2^101 with
     // the origin 2^-102 outside it, seen along 2^-13: t = 2^-89 became 2^-203, rounded to 0 and
@@ -478,6 +508,28 @@ inline Crossings<scalar_t<Prim>> exact_curved_crossings_in_unit(const Ray<scalar
         if (!(c.t < ray.tmax)) c.t = next_down(ray.tmax);
     }
     return *out;
+}
+
+template <class Prim>
+inline Crossings<float> float_crossings_in_double(const Ray<float>& ray, const Prim& prim, bool axial, bool capped, CapEnds ends, int limit)
+{
+    const Ray<double> wide_ray = scalar_cast<double>(ray);
+    const auto wide = scalar_cast<double>(prim);
+    const double reach = length_profile(wide_ray, wide).reach;
+    Crossings<float> out;
+    for (const Crossing<double>& c : exact_curved_crossings_in_unit(wide_ray, wide, axial, capped, ends, limit, reach)) {
+        float t = rounded_once<float>(
+            c.t, [](double x) { return float(x); }, [](float x) { return double(x); },
+            [&](double lo, double hi) {
+                Ray<double> window = wide_ray;
+                window.tmin = lo, window.tmax = hi;
+                return holds(exact_curved_crossings_in_unit(window, wide, axial, capped, ends, 2, reach), c);
+            });
+        if (!(t > ray.tmin)) t = next_up(ray.tmin);
+        if (!(t < ray.tmax)) t = next_down(ray.tmax);
+        out.add(t, c.part, c.entering, c.rounded);
+    }
+    return out;
 }
 
 template <class Prim>

@@ -34,6 +34,7 @@ namespace rayq::fuzz {
 struct Violation {
     std::string invariant;  // a short stable name, e.g. "hit.t_in_window"
     std::string detail;     // what was seen, with numbers (%a: exact)
+    bool known = false;     // in a class accurate_known_wrong lists (known_issues.hpp)
 };
 
 // What a check saw, beyond its violations (the tests count these to show they checked something).
@@ -258,6 +259,7 @@ void check_policy(Policy policy, const char* name, const Ray<scalar_t<Prim>>& ra
     if (occ != hit.has_value())
         v.push_back({"occluded.agrees", p + ": occluded = " + (occ ? "true" : "false") + " but intersect " + (hit ? "hit" : "missed")});
 
+    const bool known_wrong = std::is_same_v<Policy, accurate_policy> && accurate_known_wrong(ray, prim);
     // intersect_all: ascending, inside the window, and its first passage is intersect's hit.
     if (all.size() < 0 || all.size() > 2) v.push_back({"intersect_all.count", p + ": " + std::to_string(all.size()) + " passages"});
     else {
@@ -266,12 +268,15 @@ void check_policy(Policy policy, const char* name, const Ray<scalar_t<Prim>>& ra
             if (i > 0 && !(all[i - 1].hit.t <= all[i].hit.t))
                 v.push_back({"intersect_all.ascending", p + ": passage t " + num(all[i - 1].hit.t) + " then " + num(all[i].hit.t)});
         }
+        // Where accurate is a known open issue its answer depends on the query too: closest hit and
+        // all passages may take different units (found on a transformed cylinder of size 2^-511).
         if (all.empty() != !hit.has_value())
-            v.push_back({"intersect_all.first_is_intersect", p + ": intersect " + (hit ? "hit" : "missed") + " but intersect_all has " +
-                                                                 std::to_string(all.size()) + " passages"});
+            v.push_back({"intersect_all.first_is_intersect",
+                         p + ": intersect " + (hit ? "hit" : "missed") + " but intersect_all has " + std::to_string(all.size()) + " passages",
+                         known_wrong});
         else if (hit && !same(all[0].hit, *hit))
-            v.push_back({"intersect_all.first_is_intersect", p + ": first passage " + describe(all[0].hit) + " differs from intersect's " +
-                                                                 describe(*hit)});
+            v.push_back({"intersect_all.first_is_intersect",
+                         p + ": first passage " + describe(all[0].hit) + " differs from intersect's " + describe(*hit), known_wrong});
     }
 
     // The scene path (bounded primitives: a SIMD filter, with several copies so that lanes and
@@ -279,7 +284,7 @@ void check_policy(Policy policy, const char* name, const Ray<scalar_t<Prim>>& ra
     // Where accurate is a known open issue (known_issues.hpp: exact expansions out of range) its t
     // also depends on the window, and the scene narrows the window after each hit, so a later
     // copy could win a tie it should lose: those cases get one copy.
-    const bool window_dependent = std::is_same_v<Policy, accurate_policy> && accurate_known_wrong(ray, prim);
+    const bool window_dependent = known_wrong;
     Scene<Prim> scene;
     for (unsigned i = 0; i < (batch::has_bounding_sphere_v<Prim> && !window_dependent ? scene_copies : 1u); ++i) scene.add(prim);
     const auto scene_hit = intersect(policy, ray, scene);
@@ -348,7 +353,7 @@ Checked check(const Ray<scalar_t<Prim>>& ray, const Prim& prim, const Options& o
     if (options.skip_known) {
         const auto before = out.violations.size();
         out.violations.erase(std::remove_if(out.violations.begin(), out.violations.end(),
-                                            [](const Violation& v) { return known_open(v.invariant); }),
+                                            [](const Violation& v) { return v.known || known_open(v.invariant); }),
                              out.violations.end());
         out.known = int(before - out.violations.size());
     }

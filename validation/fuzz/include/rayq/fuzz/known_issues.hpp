@@ -42,6 +42,8 @@ template <class Prim> struct axial : std::false_type {};
 template <class T> struct axial<Cylinder<T>> : std::true_type {};
 template <class T> struct axial<Cone<T>> : std::true_type {};
 template <class P, class T> struct axial<Transformed<P, T>> : axial<P> {};
+template <class Prim> struct is_transformed : std::false_type {};
+template <class P, class T> struct is_transformed<Transformed<P, T>> : std::true_type {};
 
 // A nonzero length or coordinate of the primitive, the ray's origin or its direction below
 // sqrt(min): gaps between the origin and the surface may then be subnormal (the reproducers'
@@ -60,6 +62,24 @@ bool has_tiny_coordinate(const Ray<scalar_t<Prim>>& ray, const Prim& prim)
     each_vec(ray.direction, see);
     each_field(prim, see);
     return tiny;
+}
+
+// The smallest nonzero offset (origin − center, radius) and direction component, each relative to
+// the largest of its kind, multiply to below 2^-511: in the exact path's unit, where the largest
+// are near 1, a square of their product (b² in the discriminant) falls below double's range.
+// Computed in long double, whose exponent range holds every difference and product here.
+template <class T>
+bool spans_beyond_squares(const Ray<T>& ray, const Sphere<T>& s)
+{
+    const auto spread = [](std::initializer_list<long double> xs) {
+        long double largest = 0, finest = std::numeric_limits<long double>::infinity();
+        for (long double x : xs)
+            if (x != 0) largest = std::max(largest, std::abs(x)), finest = std::min(finest, std::abs(x));
+        return largest > 0 ? finest / largest : 1.0L;
+    };
+    using L = long double;
+    const L qx = L(ray.origin.x) - L(s.center.x), qy = L(ray.origin.y) - L(s.center.y), qz = L(ray.origin.z) - L(s.center.z);
+    return spread({qx, qy, qz, L(s.radius)}) * spread({L(ray.direction.x), L(ray.direction.y), L(ray.direction.z)}) < 0x1p-511L;
 }
 }  // namespace detail_known
 
@@ -105,7 +125,12 @@ bool accurate_may_hang(const Ray<scalar_t<Prim>>& ray, const Prim& prim)
 //    Fixed in this class: a cylinder of radius 2^-511 at distance ~3.6 gave a t 1,325 ulps lower
 //    when tmax was narrowed to the first answer (kernel test
 //    AccurateRegression.TinyCylinderRootIsWindowIndependent, reproducer
-//    fixtures/fuzz/axial/crash-accurate-tiny-cylinder-t-depends-on-window).
+//    fixtures/fuzz/axial/crash-accurate-tiny-cylinder-t-depends-on-window). Also seen through a
+//    Transformed (accurate_known_wrong looks through it at the object-space ray): a capped
+//    cylinder of size 2^-511 got a hit where CGAL finds none, and intersect_all's first passage
+//    (t = -0x1.30257158e045fp-451) differed from intersect's (-0x1.e3b6bbf1767b1p-510); the
+//    invariant intersect_all.first_is_intersect marks such cases known (transformed libFuzzer
+//    harness; fixtures/fuzz/open/transformed/accurate-tiny-cylinder-intersect-all-differs-from-intersect).
 //  * on a disk whose normal cannot be brought near unit length exactly (a component of 2^512 beside
 //    a subnormal one) or whose components then still span beyond 2^±64 (2^-511 beside 2^-1074):
 //    products in the exact rim test leave double's range, and a hit 24 units from a disk of radius
@@ -129,15 +154,16 @@ bool accurate_may_hang(const Ray<scalar_t<Prim>>& ray, const Prim& prim)
 //    could not scale the subnormal component; it now lowers the lengths' unit instead; kernel
 //    test AccurateRegression.LiftedRetryLowersTheLengthUnitPastASubnormalDirection, reproducer
 //    fixtures/fuzz/sphere/crash-accurate-rescaled-root-underflow-subnormal-direction);
-//  * on a float sphere with a length within 2^8 of the largest float whose root lies far below
-//    float's normal range relative to it: radius 2^127 seen along 3.54 from an origin ~2^-129·3.54
-//    outside it, exact root 0x1.7081d7a5p-129, accurate answered 2^-24 and another t in a
-//    narrowed window (found by the sphere libFuzzer harness after the retry's lift grew to 2^126,
-//    the most the exact range allows in float's unit;
-//    fixtures/fuzz/open/sphere/accurate-root-below-float-range-after-largest-lift). The fix is to
-//    solve float inputs in double's unit and round once to float (the midpoint test of
-//    exact_crossings.hpp's unscaled_t). Treated as known for spheres with any length within 2^8 of
-//    the largest T;
+//  * on a sphere whose offsets and direction span so far that squares in the exact path's unit
+//    underflow (spans_beyond_squares): a double sphere of radius 2^900 whose origin is 2^300 off
+//    its axis and 2^-301 outside it, along (−1, 0, 0): accurate reports only the exit at 2^901
+//    (exact entry at 2^-301: fixtures/fuzz/open/lines.txt; found while checking the fix below).
+//    The exact expansions would need a wider exponent than double's.
+//    Fixed outside it: a float sphere of radius 2^127 whose root 0x1.7081d7a5p-129 lay below
+//    float's normal range even after the largest lift float's unit allows (accurate answered
+//    2^-24; sphere libFuzzer harness). Float inputs far from 1 are now solved in double's unit
+//    and rounded once (kernel test AccurateRegression.FloatRootBelowFloatRangeOfASphereOfRadius2p127IsRounded,
+//    reproducer fixtures/fuzz/sphere/crash-accurate-root-below-float-range-after-largest-lift);
 //  * on a plane whose origin or direction has coordinates near DBL_MAX or 2^511 beside ordinary
 //    ones: t 7 to 9 ulps from CGAL's root (flat primitives are not rescaled as curved ones are,
 //    and the exact search's expansions overflow). Found when accurate's t_error became one ulp
@@ -153,11 +179,7 @@ bool accurate_known_wrong(const Ray<scalar_t<Prim>>& ray, const Prim& prim)
 {
     using T = scalar_t<Prim>;
     if constexpr (std::is_same_v<Prim, Sphere<T>>) {
-        const T near_max = std::ldexp(T(1), std::numeric_limits<T>::max_exponent - 8);
-        double largest = std::abs(double(prim.radius));
-        for (const Vec3<T>& v : {prim.center, ray.origin})
-            largest = std::max({largest, std::abs(double(v.x)), std::abs(double(v.y)), std::abs(double(v.z))});
-        return detail_known::has_tiny_coordinate(ray, prim) || largest >= double(near_max);
+        return detail_known::has_tiny_coordinate(ray, prim) || detail_known::spans_beyond_squares(ray, prim);
     } else if constexpr (std::is_same_v<Prim, Disk<T>>) {
         return !batch::normal_within_exact_range(prim.normal) || !batch::normal_within_exact_range(ray.direction);
     } else if constexpr (std::is_same_v<Prim, Parallelogram<T>>) {
@@ -178,6 +200,10 @@ bool accurate_known_wrong(const Ray<scalar_t<Prim>>& ray, const Prim& prim)
         const double distance = std::max(length(wide(prim.p0) - wide(ray.origin)), length(wide(prim.p1) - wide(ray.origin)));
         return finest < std::pow(std::numeric_limits<double>::min(), 1.0 / 12) || finest < std::ldexp(distance, -80) ||
                detail_known::has_tiny_coordinate(ray, prim);
+    } else if constexpr (detail_known::is_transformed<Prim>::value) {
+        // The object primitive's classes, for the ray as the kernel maps it into object space.
+        const Ray<T> local{prim.to_object.point(ray.origin), prim.to_object.linear(ray.direction), ray.tmin, ray.tmax};
+        return accurate_known_wrong(local, prim.object);
     } else {
         return false;
     }
