@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <cstring>
 #include <algorithm>
+#include <array>
 #include <limits>
 #include <optional>
 #include <type_traits>
@@ -37,7 +38,8 @@ template <> struct ExactComponent<float> { using type = double; };
 // The accurate policy's first filter precision: T's own, except for float, whose first filter is
 // hardware double (wide_t<float>): in scalar code it costs what float does, and its bounds are
 // 2^29 times tighter, tight enough to round most roots correctly without a Newton step
-// (ExactQuadratic::interval_round).
+// (ExactQuadratic::interval_round). (A float sphere's common case first takes the cheaper
+// static filter of magnitude.hpp: exact_crossings.hpp, quick_side_crossings.)
 template <class T> struct First { using type = Bounded<T>; };
 template <> struct First<float> { using type = Bounded<double>; };
 template <class T>
@@ -88,19 +90,72 @@ inline int quadratic_sign_at(const Coef& coef, const Line& x)
     });
 }
 
+// x/y for y certainly nonzero: |X/Y − x/y| <= (e_x + |x/y|·e_y)/(|y| − e_y), plus the rounding.
+template <class B>
+RAYQ_INLINE B quotient(const B& x, const B& y)
+{
+    using W = decltype(x.v / y.v);
+    const W v = x.v / y.v, y_min = lower(y);
+    if (!(y_min > W(0))) return {v, std::numeric_limits<W>::infinity()};
+    return {v, grow(grow(x.e + grow(std::abs(v) * y.e)) / y_min + unit_roundoff<W> * std::abs(v))};
+}
+
+// Both roots of a·t² + b·t + c from bounded coefficients and discriminant d = b² − 4ac, each with
+// a certified interval, ascending; none unless a ≠ 0 and d > 0 are certain and the intervals are
+// disjoint (they must say which root is which). Running error bounds (pbrt-v4 "Managing Rounding
+// Error") through the cancellation-free formula q = −(b + sign(b)·√d)/2, roots q/a and c/q (Ray
+// Tracing Gems ch. 7).
+template <class W>
+RAYQ_INLINE std::optional<std::array<Bounded<W>, 2>> root_intervals(const Bounded<W>& a, const Bounded<W>& b, const Bounded<W>& c,
+                                                               const Bounded<W>& disc)
+{
+    using B = Bounded<W>;
+    const W margin = W(1) - W(2) * unit_roundoff<W>;  // a difference of two W, rounded once
+    if (!(std::abs(a.v) > a.e) || !(disc.v > W(0) && lower(disc) > W(0))) return std::nullopt;
+    const W s = std::sqrt(disc.v);
+    // |√D − √d| = |D − d|/(√D + √d) <= e/√d; s itself is one rounding from √d.
+    const B sq{s, grow(grow(disc.e / s) + unit_roundoff<W> * s)};
+    const B q = B{W(-0.5)} * (b.v >= W(0) ? b + sq : b - sq);
+    if (!(std::abs(q.v) > q.e)) return std::nullopt;
+    B r0 = quotient(q, a), r1 = quotient(c, q);
+    if (r1.v < r0.v) std::swap(r0, r1);
+    if (!((r1.v - r0.v) * margin > grow(r0.e + r1.e))) return std::nullopt;
+    return std::array<B, 2>{r0, r1};
+}
+
+// The T nearest to a root known to lie in [v − e, v + e] (W at least as precise as T), when that
+// interval lies strictly between the midpoints around it: then it is the correctly rounded root.
+// For float roots computed in double the interval is ~2^-50 of the root against float's 2^-24
+// spacing, so this decides nearly every root.
+template <class T, class W>
+RAYQ_INLINE std::optional<T> rounded_between_midpoints(const Bounded<W>& root)
+{
+    const W margin = W(1) - W(2) * unit_roundoff<W>;
+    const T t = static_cast<T>(root.v);
+    if (!std::isfinite(t) || t == T(0) || !std::isfinite(root.e)) return std::nullopt;
+    // Midpoints between t and its neighbours are exact in W; the root must lie strictly between them.
+    const W below = (W(next_down(t)) + W(t)) / W(2), above = (W(t) + W(next_up(t))) / W(2);
+    if ((root.v - below) * margin > root.e && (above - root.v) * margin > root.e) return t;
+    return std::nullopt;
+}
+
 // The quadratic a·t² + b·t + c along the ray, whose coefficients `coef` computes in any number
 // type (a primitive's residual at t = 0). Signs of a and of the discriminant are decided once.
 template <class T, class Coef>
 class ExactQuadratic {
 public:
-    explicit ExactQuadratic(const Coef& coef) : coef_(coef), bounded0_(coef(first_t<T>{T(0)}))
+    explicit ExactQuadratic(const Coef& coef) : coef_(coef), first0_(coef(first_t<T>{T(0)}))
     {
         sign_a_ = adaptive_sign<T>([&](auto zero) { return at_zero(zero).a; });
         if (sign_a_ != 0) {
-            sign_disc_ = adaptive_sign<T>([&](auto zero) {
+            // The first filter's discriminant is kept: interval_round's roots start from it.
+            const auto discriminant = [&](auto zero) {
                 const auto r = at_zero(zero);
                 return r.df * r.df - decltype(zero){T(4)} * r.a * r.f;
-            });
+            };
+            disc0_ = discriminant(first_t<T>{T(0)});
+            sign_disc_ = certain_sign(disc0_);
+            if (sign_disc_ == 0) sign_disc_ = adaptive_sign<T>(discriminant);
             sign_b_ = 0;
         } else {
             sign_b_ = adaptive_sign<T>([&](auto zero) { return at_zero(zero).df; });
@@ -200,42 +255,19 @@ public:
         if (certified) *certified = false;
         return search_round(which, careful);
     }
-    // The root from the first filter's coefficients with a certified interval, by running error
-    // bounds (pbrt-v4 "Managing Rounding Error") through the cancellation-free quadratic formula
-    // q = −(b + sign(b)·√Δ)/2, roots q/a and c/q (Ray Tracing Gems ch. 7): when the interval lies
-    // strictly between the midpoints around its nearest T, that T is the correctly rounded root.
-    // For float in double the interval is ~2^-50 of the root against float's 2^-24 spacing: it
-    // decides nearly every root with no evaluation beyond the coefficients at t = 0.
+    // The root from the first filter's coefficients with a certified interval (root_intervals),
+    // rounded when that interval decides it (rounded_between_midpoints).
     std::optional<T> interval_round(int which) const
     {
-        using B = first_t<T>;
-        using W = decltype(B{}.v);
-        const W margin = W(1) - W(2) * unit_roundoff<W>;  // a difference of two W, rounded once
-        const B a = bounded0_.a, b = bounded0_.df, c = bounded0_.f;
-        B root;
+        const first_t<T>& a = first0_.a, &b = first0_.df, &c = first0_.f;
         if (sign_a_ == 0) {
             if (!(std::abs(b.v) > b.e)) return std::nullopt;
-            root = quotient(-c, b);
-        } else {
-            if (sign_disc_ <= 0 || !(std::abs(a.v) > a.e)) return std::nullopt;
-            const B disc = b * b - B{W(4)} * a * c;
-            if (!(disc.v > W(0) && lower(disc) > W(0))) return std::nullopt;
-            const W s = std::sqrt(disc.v);
-            // |√D − √d| = |D − d|/(√D + √d) <= e/√d; s itself is one rounding from √d.
-            const B sq{s, grow(grow(disc.e / s) + unit_roundoff<W> * s)};
-            const B q = B{W(-0.5)} * (b.v >= W(0) ? b + sq : b - sq);
-            if (!(std::abs(q.v) > q.e)) return std::nullopt;
-            B r0 = quotient(q, a), r1 = quotient(c, q);
-            if (r1.v < r0.v) std::swap(r0, r1);
-            if (!((r1.v - r0.v) * margin > grow(r0.e + r1.e))) return std::nullopt;  // the intervals must say which root is which
-            root = which == 0 ? r0 : r1;
+            return rounded_between_midpoints<T>(quotient(-c, b));
         }
-        const T t = static_cast<T>(root.v);
-        if (!std::isfinite(t) || t == T(0) || !std::isfinite(root.e)) return std::nullopt;
-        // Midpoints between t and its neighbours are exact in W; the root must lie strictly between them.
-        const W below = (W(next_down(t)) + W(t)) / W(2), above = (W(t) + W(next_up(t))) / W(2);
-        if ((root.v - below) * margin > root.e && (above - root.v) * margin > root.e) return t;
-        return std::nullopt;
+        if (sign_disc_ <= 0) return std::nullopt;
+        const auto roots = root_intervals(a, b, c, disc0_);
+        if (!roots) return std::nullopt;
+        return rounded_between_midpoints<T>((*roots)[which]);
     }
 
     // One Newton step t + δ, δ = −F(t)/F'(t), with F, F' and a evaluated in wide_t arithmetic
@@ -327,7 +359,7 @@ private:
     Residual<N> at_zero(N zero) const
     {
         if constexpr (std::is_same_v<N, first_t<T>>) {
-            return bounded0_;
+            return first0_;
         } else if constexpr (std::is_same_v<N, wide_t<T>>) {
             if (!wide0_) wide0_ = coef_(zero);
             return *wide0_;
@@ -367,18 +399,9 @@ private:
         return x;
     }
 
-    // x/y for y certainly nonzero: |X/Y − x/y| <= (e_x + |x/y|·e_y)/(|y| − e_y), plus the rounding.
-    template <class B>
-    static B quotient(const B& x, const B& y)
-    {
-        using W = decltype(x.v / y.v);
-        const W v = x.v / y.v, y_min = lower(y);
-        if (!(y_min > W(0))) return {v, std::numeric_limits<W>::infinity()};
-        return {v, grow(grow(x.e + grow(std::abs(v) * y.e)) / y_min + unit_roundoff<W> * std::abs(v))};
-    }
-
     Coef coef_;
-    Residual<first_t<T>> bounded0_;
+    Residual<first_t<T>> first0_;
+    first_t<T> disc0_{T(0)};  // F'(0)² − 4·a·F(0) in the first filter (quadratic case)
     mutable std::optional<Residual<wide_t<T>>> wide0_;
     int sign_a_ = 0, sign_disc_ = 0, sign_b_ = 0, sign_c_ = 0;
 };

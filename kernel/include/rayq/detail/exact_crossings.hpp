@@ -12,6 +12,7 @@
 #include "../query.hpp"
 #include "../ray.hpp"
 #include "exact.hpp"
+#include "magnitude.hpp"
 #include "spans.hpp"
 #include "ulp.hpp"
 
@@ -31,7 +32,15 @@ struct PartCoefficients {
         return residual(*prim, lift<N>(ray->origin), lift<N>(ray->direction), t, part);
     }
     template <class N>
-    Residual<N> operator()(N zero) const { return at(zero); }
+    Residual<N> operator()(N zero) const
+    {
+        if constexpr (is_magnitude<N>::value) return first_at_zero(zero);
+        else return at(zero);
+    }
+    // The static filter's coefficients (magnitude.hpp), with the primitive's residual inlined: its
+    // rounding counts are then constants the compiler folds away.
+    template <class N>
+    RAYQ_INLINE RAYQ_FLATTEN Residual<N> first_at_zero(N zero) const { return at(zero); }
 };
 
 // Ends of spans, symbolically: ±infinity, a root of the side's quadratic, or a cap plane's t.
@@ -532,10 +541,51 @@ inline Crossings<float> float_crossings_in_double(const Ray<float>& ray, const P
     return out;
 }
 
+// The common case of a float primitive without caps (a sphere), settled by the first filter
+// alone: leading coefficient certainly positive, and the discriminant certainly negative (no
+// crossing) or certainly positive with both roots rounded from their
+// certified intervals (root_intervals, rounded_between_midpoints), and each rounded root on a
+// definite side of both window ends (a float root t > x means the exact root exceeds x, since it
+// lies beyond the midpoint below t). None when anything is uncertain: the exact path then
+// decides, and since a correctly rounded root is unique, both give the same answer. Its filter is
+// the static one of magnitude.hpp (about a third of Bounded's cost here), whose inputs must lie in
+// 2^±80; that keeps the coefficients' magnitudes within 2^±320, so that the few running-error
+// steps after it cannot underflow either (the rescaled exact path takes the rest).
+template <class Prim>
+inline std::optional<Crossings<float>> quick_side_crossings(const Ray<float>& ray, const Prim& prim, int limit)
+{
+    // Every input in range, checked once here (the residual's other inputs are t = 0 and small
+    // integer constants, and the discriminant's is 4).
+    using M = Magnitude<double>;
+    bool in_range = true;
+    const auto see = [&](const auto& x) {
+        if constexpr (std::is_same_v<std::decay_t<decltype(x)>, float>) in_range &= M::in_range(x);
+        else in_range &= M::in_range(x.x) & M::in_range(x.y) & M::in_range(x.z);
+    };
+    see(ray.origin), see(ray.direction), each_length(prim, see);
+    if (!in_range) return std::nullopt;
+    const Residual<M> r = PartCoefficients<Prim>{&prim, &ray, Part::surface}(M{0.0});
+    const M disc = r.df * r.df - M{4.0} * r.a * r.f;
+    if (!(r.a.v > r.a.bound())) return std::nullopt;  // a > 0: the side is negative between the roots
+    if (certain_sign(disc) < 0) return Crossings<float>{};  // and positive everywhere without them
+    const auto roots = root_intervals(bounded(r.a), bounded(r.df), bounded(r.f), bounded(disc));
+    if (!roots) return std::nullopt;
+    Crossings<float> out;
+    for (int i = 0; i < 2 && out.count < limit; ++i) {
+        const std::optional<float> t = rounded_between_midpoints<float>((*roots)[i]);
+        if (!t || *t == ray.tmin || *t == ray.tmax) return std::nullopt;
+        if (ray.tmin < *t && *t < ray.tmax) out.add(*t, Part::surface, i == 0, true);
+    }
+    return out;
+}
+
 template <class Prim>
 inline Crossings<scalar_t<Prim>> exact_curved_crossings(const Ray<scalar_t<Prim>>& ray, const Prim& prim, bool axial, bool capped,
                                                          CapEnds ends, int limit)
 {
+    if constexpr (std::is_same_v<scalar_t<Prim>, float>)
+        if (!axial)
+            if (const auto quick = quick_side_crossings(ray, prim, limit)) return *quick;
     const LengthProfile<scalar_t<Prim>> lengths = length_profile(ray, prim);
     Crossings<scalar_t<Prim>> out = exact_curved_crossings_in_unit(ray, prim, axial, capped, ends, limit, lengths.reach);
     if (out.count > 0 && !certificates_hold(ray, lengths))

@@ -6,8 +6,11 @@
 
 #if defined(__GNUC__) || defined(__clang__)
 #define RAYQ_INLINE inline __attribute__((always_inline))
+#define RAYQ_FLATTEN __attribute__((flatten))
 #elif defined(_MSC_VER)
 #define RAYQ_INLINE __forceinline
+#define RAYQ_FLATTEN
 #else
 #define RAYQ_INLINE inline
+#define RAYQ_FLATTEN
 #endif
