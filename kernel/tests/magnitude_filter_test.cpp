@@ -112,5 +112,21 @@ TEST(MagnitudeFilter, QuickLaneDeclinesInputsOutOfRange)
     EXPECT_FALSE(detail::quick_side_crossings(Ray<float>{{0.0f, 0.0f, -4.0f}, {0.0f, 1e-30f, 1.0f}}, Sphere<float>{{0.0f, 0.0f, 0.0f}, 1.0f}, 2));
 }
 
+// The closest hit and all crossings take the same lane: with a direction component 2^-63 beside
+// 1 the exact path's certificates do not hold (t_error is the a-posteriori bound), and the quick
+// lane once answered the closest hit alone (t_error one ulp), so intersect and intersect_all's
+// first passage differed (sphere libFuzzer harness).
+TEST(MagnitudeFilter, ClosestHitAndAllCrossingsAgreeInEveryField)
+{
+    const Ray<float> r{{0.0f, 0x1p-63f, -0x1.a24e54p+44f}, {0.0f, 0.0f, 1.0f}};
+    const Sphere<float> s{{-0x1.490764p-43f, 0x1p-63f, -0x1.509p-1f}, 0x1.a24e54p+43f};
+    const auto hit = intersect(accurate, r, s);
+    const auto all = intersect_all(accurate, r, s);
+    ASSERT_TRUE(hit);
+    ASSERT_GE(all.size(), 1);
+    EXPECT_EQ(all[0].hit.t, hit->t);
+    EXPECT_EQ(all[0].hit.t_error, hit->t_error);
+}
+
 }  // namespace
 }  // namespace rayq::test

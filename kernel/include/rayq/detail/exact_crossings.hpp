@@ -570,12 +570,18 @@ inline std::optional<Crossings<float>> quick_side_crossings(const Ray<float>& ra
     if (certain_sign(disc) < 0) return Crossings<float>{};  // and positive everywhere without them
     const auto roots = root_intervals(bounded(r.a), bounded(r.df), bounded(r.f), bounded(disc));
     if (!roots) return std::nullopt;
-    Crossings<float> out;
-    for (int i = 0; i < 2 && out.count < limit; ++i) {
-        const std::optional<float> t = rounded_between_midpoints<float>((*roots)[i]);
-        if (!t || *t == ray.tmin || *t == ray.tmax) return std::nullopt;
-        if (ray.tmin < *t && *t < ray.tmax) out.add(*t, Part::surface, i == 0, true);
+    // Both roots, whatever the limit: the closest hit and all crossings must take the same lane,
+    // or their records could differ in t_error (found by the sphere libFuzzer harness's
+    // intersect_all.first_is_intersect invariant, with a direction component 2^-63 beside 1).
+    float t[2];
+    for (int i = 0; i < 2; ++i) {
+        const std::optional<float> rounded = rounded_between_midpoints<float>((*roots)[i]);
+        if (!rounded || *rounded == ray.tmin || *rounded == ray.tmax) return std::nullopt;
+        t[i] = *rounded;
     }
+    Crossings<float> out;
+    for (int i = 0; i < 2 && out.count < limit; ++i)
+        if (ray.tmin < t[i] && t[i] < ray.tmax) out.add(t[i], Part::surface, i == 0, true);
     return out;
 }
 
