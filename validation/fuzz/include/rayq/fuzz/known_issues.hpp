@@ -81,6 +81,17 @@ bool spans_beyond_squares(const Ray<T>& ray, const Sphere<T>& s)
     const L qx = L(ray.origin.x) - L(s.center.x), qy = L(ray.origin.y) - L(s.center.y), qz = L(ray.origin.z) - L(s.center.z);
     return spread({qx, qy, qz, L(s.radius)}) * spread({L(ray.direction.x), L(ray.direction.y), L(ray.direction.z)}) < 0x1p-511L;
 }
+
+// A double sphere with a length (a coordinate of its center or the origin, or its radius) within
+// 2^8 of the largest double (float inputs are solved in double's unit and are not in this class).
+template <class T>
+bool has_length_near_max(const Ray<T>& ray, const Sphere<T>& s)
+{
+    const T near_max = std::ldexp(T(1), std::numeric_limits<T>::max_exponent - 8);
+    T largest = std::abs(s.radius);
+    for (const Vec3<T>& v : {s.center, ray.origin}) largest = std::max({largest, std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+    return largest >= near_max;
+}
 }  // namespace detail_known
 
 // rayq::accurate can take seconds or longer on cylinders and cones whose lengths span a huge
@@ -158,7 +169,11 @@ bool accurate_may_hang(const Ray<scalar_t<Prim>>& ray, const Prim& prim)
 //    underflow (spans_beyond_squares): a double sphere of radius 2^900 whose origin is 2^300 off
 //    its axis and 2^-301 outside it, along (−1, 0, 0): accurate reports only the exit at 2^901
 //    (exact entry at 2^-301: fixtures/fuzz/open/lines.txt; found while checking the fix below).
-//    The exact expansions would need a wider exponent than double's.
+//    The exact expansions would need a wider exponent than double's. Also known: a double sphere
+//    with a length within 2^8 of the largest double (has_length_near_max): radius DBL_MAX seen
+//    from its surface, intersect_all found no passage where intersect found the exact root
+//    (the root at t = 0 lies below double's normal range in every lifted unit; sphere libFuzzer
+//    harness; fixtures/fuzz/open/sphere/accurate-intersect-all-empty-on-dbl-max-sphere).
 //    Fixed outside it: a float sphere of radius 2^127 whose root 0x1.7081d7a5p-129 lay below
 //    float's normal range even after the largest lift float's unit allows (accurate answered
 //    2^-24; sphere libFuzzer harness). Float inputs far from 1 are now solved in double's unit
@@ -179,7 +194,8 @@ bool accurate_known_wrong(const Ray<scalar_t<Prim>>& ray, const Prim& prim)
 {
     using T = scalar_t<Prim>;
     if constexpr (std::is_same_v<Prim, Sphere<T>>) {
-        return detail_known::has_tiny_coordinate(ray, prim) || detail_known::spans_beyond_squares(ray, prim);
+        return detail_known::has_tiny_coordinate(ray, prim) || detail_known::spans_beyond_squares(ray, prim) ||
+               (std::is_same_v<T, double> && detail_known::has_length_near_max(ray, prim));
     } else if constexpr (std::is_same_v<Prim, Disk<T>>) {
         return !batch::normal_within_exact_range(prim.normal) || !batch::normal_within_exact_range(ray.direction);
     } else if constexpr (std::is_same_v<Prim, Parallelogram<T>>) {
