@@ -7,12 +7,14 @@
 #include <limits>
 #include <type_traits>
 
+#include "inline.hpp"
+
 namespace rayq::detail {
 
 // The next float above x (IEEE 754 nextUp): +inf and NaN stay, −inf becomes −max, ±0 the
 // smallest subnormal. Equal to std::nextafter(x, +inf).
 template <class T>
-inline T next_up(T x)
+RAYQ_INLINE T next_up(T x)
 {
     static_assert(std::numeric_limits<T>::is_iec559 && (sizeof(T) == 4 || sizeof(T) == 8));
     using Bits = std::conditional_t<sizeof(T) == 4, std::uint32_t, std::uint64_t>;
@@ -27,6 +29,6 @@ inline T next_up(T x)
 
 // The next float below x: std::nextafter(x, −inf).
 template <class T>
-inline T next_down(T x) { return -next_up(-x); }
+RAYQ_INLINE T next_down(T x) { return -next_up(-x); }
 
 }  // namespace rayq::detail
