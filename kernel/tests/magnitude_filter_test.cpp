@@ -33,13 +33,14 @@ bool bound_holds(const Magnitude<double>& x, const Expansion<double>& exact)
 }
 
 // The sphere's coefficients at t = 0 and their discriminant, as the quick lane computes them, on
-// inputs across 2^±40 (products of four span 2^±160) and on near-tangent rays (cancellation).
+// float inputs across 2^±40 and across float's whole range, and on near-tangent rays
+// (cancellation).
 TEST(MagnitudeFilter, BoundHoldsOnSphereCoefficientsAndDiscriminant)
 {
     std::mt19937_64 rng(0x3A6);
     int checked = 0, decided = 0;
     for (int i = 0; i < 20000; ++i) {
-        const int spread = i % 3 == 0 ? 40 : 4;
+        const int spread = i % 3 == 0 ? 40 : (i % 3 == 1 ? 4 : 126);
         Sphere<float> s{{random_float(rng, -spread, spread), random_float(rng, -spread, spread), random_float(rng, -spread, spread)},
                         std::abs(random_float(rng, -spread, spread))};
         Ray<float> r{{random_float(rng, -spread, spread), random_float(rng, -spread, spread), random_float(rng, -spread, spread)},
@@ -47,6 +48,7 @@ TEST(MagnitudeFilter, BoundHoldsOnSphereCoefficientsAndDiscriminant)
         if (i % 2 == 1) {  // aim along an axis at the rim: the discriminant nearly cancels
             r.origin = {s.center.x - 4 * s.radius, s.center.y + s.radius * (1 - 1e-6f * float(i % 7)), s.center.z};
             r.direction = {1.0f, 0.0f, 0.0f};
+            if (!isfinite(r.origin)) continue;  // 4·radius beyond the largest float
         }
         const detail::PartCoefficients<Sphere<float>> coef{&s, &r, Part::surface};
         const auto m = coef(Magnitude<double>{0.0});
@@ -77,7 +79,9 @@ TEST(MagnitudeFilter, QuickLaneAgreesWithTheExactPath)
     std::uniform_real_distribution<double> u(-1, 1), lg(-3, 3);
     int rays = 0, answered = 0;
     for (int i = 0; i < 20000; ++i) {
-        const double scale = std::pow(10.0, lg(rng));
+        // Mostly ordinary scales; every fourth query far from 1 (2^±60), where the quick lane
+        // still answers as long as the coefficients stay within 2^±400.
+        const double scale = i % 4 == 3 ? std::ldexp(1.0, int(60 * u(rng))) : std::pow(10.0, lg(rng));
         const Sphere<float> s{{float(scale * u(rng)), float(scale * u(rng)), float(scale * u(rng))}, float(scale * (0.1 + std::abs(u(rng))))};
         const Vec3<float> o{float(4 * scale * u(rng)), float(4 * scale * u(rng)), float(4 * scale * u(rng))};
         const Vec3<float> aim{float(s.center.x + 1.2 * s.radius * u(rng)), float(s.center.y + 1.2 * s.radius * u(rng)),
@@ -102,14 +106,20 @@ TEST(MagnitudeFilter, QuickLaneAgreesWithTheExactPath)
     EXPECT_GT(answered, rays * 95 / 100);
 }
 
-// Inputs outside 2^±80 (or not finite) leave the quick lane to the rescaled exact path.
-TEST(MagnitudeFilter, QuickLaneDeclinesInputsOutOfRange)
+// Non-finite inputs, and coefficients beyond 2^±400, leave the quick lane to the rescaled exact
+// path; large spheres whose coefficients stay within it do not.
+TEST(MagnitudeFilter, QuickLaneDeclinesOutOfRange)
 {
     const Ray<float> r{{0.0f, 0.0f, -4.0f}, {0.0f, 0.0f, 1.0f}};
+    const float inf = std::numeric_limits<float>::infinity(), nan = std::numeric_limits<float>::quiet_NaN();
     EXPECT_TRUE(detail::quick_side_crossings(r, Sphere<float>{{0.0f, 0.0f, 0.0f}, 1.0f}, 2));
-    EXPECT_FALSE(detail::quick_side_crossings(r, Sphere<float>{{0.0f, 0.0f, 0.0f}, 0x1p81f}, 2));
-    EXPECT_FALSE(detail::quick_side_crossings(r, Sphere<float>{{0x1p-81f, 0.0f, 0.0f}, 1.0f}, 2));
-    EXPECT_FALSE(detail::quick_side_crossings(Ray<float>{{0.0f, 0.0f, -4.0f}, {0.0f, 1e-30f, 1.0f}}, Sphere<float>{{0.0f, 0.0f, 0.0f}, 1.0f}, 2));
+    EXPECT_TRUE(detail::quick_side_crossings(r, Sphere<float>{{0.0f, 0.0f, 0.0f}, 0x1p81f}, 2));
+    EXPECT_TRUE(detail::quick_side_crossings(r, Sphere<float>{{0.0f, 0.0f, 0.0f}, 0x1p120f}, 2));
+    // From 2^120 away along a direction of length 2^100: b² ~ 2^442.
+    EXPECT_FALSE(detail::quick_side_crossings(Ray<float>{{0.0f, 0.0f, -0x1p120f}, {0.0f, 0.0f, 0x1p100f}}, Sphere<float>{{0.0f, 0.0f, 0.0f}, 1.0f}, 2));
+    EXPECT_FALSE(detail::quick_side_crossings(r, Sphere<float>{{0.0f, 0.0f, 0.0f}, inf}, 2));
+    EXPECT_FALSE(detail::quick_side_crossings(r, Sphere<float>{{nan, 0.0f, 0.0f}, 1.0f}, 2));
+    EXPECT_FALSE(detail::quick_side_crossings(Ray<float>{{0.0f, 0.0f, -4.0f}, {0.0f, 0.0f, inf}}, Sphere<float>{{0.0f, 0.0f, 0.0f}, 1.0f}, 2));
 }
 
 // The closest hit and all crossings take the same lane: with a direction component 2^-63 beside

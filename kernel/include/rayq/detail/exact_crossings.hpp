@@ -548,24 +548,21 @@ inline Crossings<float> float_crossings_in_double(const Ray<float>& ray, const P
 // definite side of both window ends (a float root t > x means the exact root exceeds x, since it
 // lies beyond the midpoint below t). None when anything is uncertain: the exact path then
 // decides, and since a correctly rounded root is unique, both give the same answer. Its filter is
-// the static one of magnitude.hpp (about a third of Bounded's cost here), whose inputs must lie in
-// 2^±80; that keeps the coefficients' magnitudes within 2^±320, so that the few running-error
-// steps after it cannot underflow either (the rescaled exact path takes the rest).
+// the static one of magnitude.hpp (about a third of Bounded's cost here).
 template <class Prim>
 inline std::optional<Crossings<float>> quick_side_crossings(const Ray<float>& ray, const Prim& prim, int limit)
 {
-    // Every input in range, checked once here (the residual's other inputs are t = 0 and small
-    // integer constants, and the discriminant's is 4).
     using M = Magnitude<double>;
-    bool in_range = true;
-    const auto see = [&](const auto& x) {
-        if constexpr (std::is_same_v<std::decay_t<decltype(x)>, float>) in_range &= M::in_range(x);
-        else in_range &= M::in_range(x.x) & M::in_range(x.y) & M::in_range(x.z);
-    };
-    see(ray.origin), see(ray.direction), each_length(prim, see);
-    if (!in_range) return std::nullopt;
     const Residual<M> r = PartCoefficients<Prim>{&prim, &ray, Part::surface}(M{0.0});
     const M disc = r.df * r.df - M{4.0} * r.a * r.f;
+    // The sphere's discriminant has four float factors per nonzero monomial (Magnitude's degree,
+    // 8, also counts the constants 2 and 4 and t = 0), so the filter's guarantee holds for any
+    // finite float. The coefficients' magnitudes within 2^±400 keep the running-error steps after
+    // it (root_intervals) clear of underflow: their values and bounds then exceed 2^-460. (An
+    // infinite or NaN input fails here too.)
+    if (disc.d > 8) return std::nullopt;
+    const auto moderate = [](const M& x) { return x.m >= 0x1p-400 && x.m <= 0x1p400; };
+    if (!(moderate(r.a) & moderate(r.df) & moderate(r.f) & moderate(disc))) return std::nullopt;
     if (!(r.a.v > r.a.bound())) return std::nullopt;  // a > 0: the side is negative between the roots
     if (certain_sign(disc) < 0) return Crossings<float>{};  // and positive everywhere without them
     const auto roots = root_intervals(bounded(r.a), bounded(r.df), bounded(r.f), bounded(disc));
