@@ -562,7 +562,7 @@ inline std::optional<Crossings<float>> quick_side_crossings(const Ray<float>& ra
     // infinite or NaN input fails here too.)
     if (disc.d > 8) return std::nullopt;
     const auto moderate = [](const M& x) { return x.m >= 0x1p-400 && x.m <= 0x1p400; };
-    if (!(moderate(r.a) & moderate(r.df) & moderate(r.f) & moderate(disc))) return std::nullopt;
+    if (!(moderate(r.a) && moderate(r.df) && moderate(r.f) && moderate(disc))) return std::nullopt;
     if (!(r.a.v > r.a.bound())) return std::nullopt;  // a > 0: the side is negative between the roots
     if (certain_sign(disc) < 0) return Crossings<float>{};  // and positive everywhere without them
     const auto roots = root_intervals(bounded(r.a), bounded(r.df), bounded(r.f), bounded(disc));
