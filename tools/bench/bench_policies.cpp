@@ -66,6 +66,12 @@ template <class T> rayq::Triangle<T> triangle()
     return {to<T>(c + Vec3<double>{-1.0, -0.8, 0.1}), to<T>(c + Vec3<double>{1.1, -0.5, -0.2}),
             to<T>(c + Vec3<double>{-0.2, 1.2, 0.3})};
 }
+// A capped frustum about the same axis as the cylinder, radii 0.9 and 0.4.
+template <class T> rayq::Cone<T> frustum()
+{
+    const Vec3<double> half{0.3 * 1.2, 0.4 * 1.2, 0.87 * 1.2};
+    return {to<T>(c - half), T(0.9), to<T>(c + half), T(0.4), rayq::Caps::both};
+}
 template <class T> rayq::Cylinder<T> cylinder(rayq::Caps caps)
 {
     return rayq::Cylinder<T>::from_center(to<T>(c), {T(0.3), T(0.4), T(0.87)}, T(0.7), T(1.2), caps);
@@ -175,6 +181,7 @@ void register_query()
     register_primitive<Query>(
         "capped_cylinder", [] { return cylinder<double>(rayq::Caps::both); },
         [] { return cylinder<float>(rayq::Caps::both); });
+    register_primitive<Query>("frustum", frustum<double>, frustum<float>);
 }
 
 }  // namespace

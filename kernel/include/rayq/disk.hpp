@@ -63,6 +63,22 @@ inline detail::Residual<N> residual(const Disk<T>& p, const Vec3<N>& o, const Ve
     return detail::plane_residual(p.center, detail::lift<N>(p.normal), o, d, t);
 }
 
+namespace detail {
+// The quick lane's plane and trim (exact_crossings.hpp, QuickFlat): with w = (d·n)·(o + t·d − c)
+// at the root t = −f/(d·n), |w|² − r²·(d·n)² has the rim's sign and six float factors per
+// monomial.
+template <class T>
+inline QuickFlat quick_disk(const Ray<T>& ray, const Disk<T>& disk)
+{
+    using M = Magnitude<double>;
+    const Residual<M> plane = quick_plane(ray, disk);
+    const Vec3<M> q = lift<M>(ray.origin) - lift<M>(disk.center), d = lift<M>(ray.direction);
+    const Vec3<M> w = plane.df * q - plane.f * d;
+    const M r{disk.radius};
+    return {plane.f, plane.df, -certain_sign(dot(w, w) - r * r * (plane.df * plane.df))};
+}
+}  // namespace detail
+
 // Accurate: exact decisions, correctly rounded t. Inside: |o + t·d − c|² − r² <= 0 at the
 // plane's root, evaluated exactly (detail/exact_crossings.hpp).
 template <class T>
@@ -76,7 +92,9 @@ inline Crossings<T> crossings(accurate_policy, const Ray<T>& ray, const Disk<T>&
         return detail::Residual<N>{dot(q, q) - r * r, N{T(2)} * dot(q, d), dot(d, d)};
     };
     const detail::PartCoefficients<Disk<T>> plane{&disk, &ray, Part::surface};
-    return detail::exact_flat_crossing(ray, disk, [&](const auto&) { return detail::quadratic_sign_at<T>(rim, plane) <= 0; });
+    return detail::exact_flat_crossing(
+        ray, disk, [&](const auto&) { return detail::quadratic_sign_at<T>(rim, plane) <= 0; },
+        [&] { return detail::quick_disk(ray, disk); });
 }
 
 template <class T>

@@ -2,8 +2,6 @@
 // one edge0 × edge1 points to (the design notes' square and rectangle).
 #pragma once
 
-#include <tuple>
-
 #include "detail/exact_crossings.hpp"
 #include "detail/flat.hpp"
 #include "query.hpp"
@@ -69,10 +67,12 @@ inline Crossings<T> crossings(accurate_policy, const Ray<T>& ray, const Parallel
 {
     const auto edges = [&](auto zero) {
         using N = decltype(zero);
-        return std::tuple{detail::lift<N>(p.corner), detail::lift<N>(p.edge0), detail::lift<N>(p.edge1)};
+        return detail::PlanarFrame<N>{detail::lift<N>(p.corner), detail::lift<N>(p.edge0), detail::lift<N>(p.edge1)};
     };
     // det = e0·(d × e1) = −d·n, so its sign is minus the plane's slope along the ray.
-    return detail::exact_flat_crossing(ray, p, [&](const auto& plane) { return detail::exact_planar_inside(ray, edges, -plane.sign_b(), false); });
+    return detail::exact_flat_crossing(
+        ray, p, [&](const auto& plane) { return detail::exact_planar_inside(ray, edges, -plane.sign_b(), false); },
+        [&] { return detail::quick_planar(ray, edges, false); });
 }
 
 template <class T>

@@ -54,7 +54,11 @@ inline detail::Residual<N> residual(const Plane<T>& p, const Vec3<N>& o, const V
 template <class T>
 inline Crossings<T> crossings(accurate_policy, const Ray<T>& ray, const Plane<T>& p)
 {
-    return detail::exact_flat_crossing(ray, p, [](const auto&) { return true; });
+    return detail::exact_flat_crossing(
+        ray, p, [](const auto&) { return true; }, [&] {
+            const auto plane = detail::quick_plane(ray, p);
+            return detail::QuickFlat{plane.f, plane.df, 1};
+        });
 }
 
 template <class T>

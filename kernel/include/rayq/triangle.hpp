@@ -2,8 +2,6 @@
 // (counter-clockwise seen from the front, the right-hand rule).
 #pragma once
 
-#include <tuple>
-
 #include "detail/exact_crossings.hpp"
 #include "detail/flat.hpp"
 #include "query.hpp"
@@ -69,9 +67,11 @@ inline Crossings<T> crossings(accurate_policy, const Ray<T>& ray, const Triangle
     const auto edges = [&](auto zero) {
         using N = decltype(zero);
         const Vec3<N> a = detail::lift<N>(tri.a);
-        return std::tuple{a, detail::lift<N>(tri.b) - a, detail::lift<N>(tri.c) - a};
+        return detail::PlanarFrame<N>{a, detail::lift<N>(tri.b) - a, detail::lift<N>(tri.c) - a};
     };
-    return detail::exact_flat_crossing(ray, tri, [&](const auto& plane) { return detail::exact_planar_inside(ray, edges, -plane.sign_b(), true); });
+    return detail::exact_flat_crossing(
+        ray, tri, [&](const auto& plane) { return detail::exact_planar_inside(ray, edges, -plane.sign_b(), true); },
+        [&] { return detail::quick_planar(ray, edges, true); });
 }
 
 template <class T>
