@@ -51,6 +51,24 @@ struct End {
     constexpr bool finite() const { return kind != EndKind::neg_inf && kind != EndKind::pos_inf; }
 };
 
+// t kept strictly inside the ray's window, where the exact value it stands for lies: a value
+// rounded onto (or, after unscaling, past) an end moves to the neighbouring float inside.
+template <class T>
+inline T inside_window(const Ray<T>& ray, T t)
+{
+    if (!(t > ray.tmin)) t = next_up(ray.tmin);
+    if (!(t < ray.tmax)) t = next_down(ray.tmax);
+    return t;
+}
+
+// The same ray with the window (tmin, tmax): the narrowed queries that settle a rounding.
+template <class T>
+inline Ray<T> with_window(Ray<T> ray, T tmin, T tmax)
+{
+    ray.tmin = tmin, ray.tmax = tmax;
+    return ray;
+}
+
 // The side solid's spans (where its implicit function is negative), ascending, from the signs of
 // its quadratic (a side of ExactQuadratic's interface: sign_a, sign_b, sign_c, sign_disc).
 template <class Quadratic>
@@ -160,10 +178,7 @@ public:
     // The end's t correctly rounded (memoized), kept strictly inside the window (where the exact value is).
     T value(End e) const
     {
-        T t = rounded(e);
-        if (!(t > ray_.tmin)) t = next_up(ray_.tmin);
-        if (!(t < ray_.tmax)) t = next_down(ray_.tmax);
-        return t;
+        return inside_window(ray_, rounded(e));
     }
 
 private:
@@ -398,11 +413,7 @@ inline scalar_t<Prim> unscaled_t(const Crossing<scalar_t<Prim>>& c, int shift, c
     using T = scalar_t<Prim>;
     return rounded_once<T>(
         c.t, [&](T x) { return std::ldexp(x, shift); }, [&](T x) { return std::ldexp(x, -shift); },
-        [&](T lo, T hi) {
-            Ray<T> window = unit.ray;
-            window.tmin = lo, window.tmax = hi;
-            return holds(exact_curved_crossings_unscaled(window, unit.prim, axial, capped, ends, 2), c);
-        });
+        [&](T lo, T hi) { return holds(exact_curved_crossings_unscaled(with_window(unit.ray, lo, hi), unit.prim, axial, capped, ends, 2), c); });
 }
 
 // What the exact path needs to know of a primitive's points and radii (each_length), in one walk.
@@ -523,9 +534,7 @@ inline Crossings<scalar_t<Prim>> exact_curved_crossings_in_unit(const Ray<scalar
     }
     if (!out) return exact_curved_crossings_unscaled(ray, prim, axial, capped, ends, limit);
     for (Crossing<T>& c : out->item) {
-        c.t = unscaled_t(c, shift, *unit, axial, capped, ends);  // exact unless subnormal or beyond the largest float
-        if (!(c.t > ray.tmin)) c.t = next_up(ray.tmin);
-        if (!(c.t < ray.tmax)) c.t = next_down(ray.tmax);
+        c.t = inside_window(ray, unscaled_t(c, shift, *unit, axial, capped, ends));  // exact unless subnormal or beyond the largest float
     }
     return *out;
 }
@@ -538,16 +547,10 @@ inline Crossings<float> float_crossings_in_double(const Ray<float>& ray, const P
     const double reach = length_profile(wide_ray, wide).reach;
     Crossings<float> out;
     for (const Crossing<double>& c : exact_curved_crossings_in_unit(wide_ray, wide, axial, capped, ends, limit, reach)) {
-        float t = rounded_once<float>(
+        const float t = rounded_once<float>(
             c.t, [](double x) { return float(x); }, [](float x) { return double(x); },
-            [&](double lo, double hi) {
-                Ray<double> window = wide_ray;
-                window.tmin = lo, window.tmax = hi;
-                return holds(exact_curved_crossings_in_unit(window, wide, axial, capped, ends, 2, reach), c);
-            });
-        if (!(t > ray.tmin)) t = next_up(ray.tmin);
-        if (!(t < ray.tmax)) t = next_down(ray.tmax);
-        out.add(t, c.part, c.entering, c.rounded);
+            [&](double lo, double hi) { return holds(exact_curved_crossings_in_unit(with_window(wide_ray, lo, hi), wide, axial, capped, ends, 2, reach), c); });
+        out.add(inside_window(ray, t), c.part, c.entering, c.rounded);
     }
     return out;
 }
@@ -821,9 +824,7 @@ inline Crossings<scalar_t<Prim>> exact_flat_crossing(const Ray<scalar_t<Prim>>& 
         return plane.compare(0, FloatLine<T>{-x, T(1)}) > 0;
     };
     if (!after(ray.tmin) || !before(ray.tmax) || !inside(plane)) return out;
-    if (!(t > ray.tmin)) t = next_up(ray.tmin);
-    if (!(t < ray.tmax)) t = next_down(ray.tmax);
-    out.add(t, Part::surface, plane.sign_b() < 0, certified);  // F = (o + t·d − p)·n decreasing: entering
+    out.add(inside_window(ray, t), Part::surface, plane.sign_b() < 0, certified);  // F = (o + t·d − p)·n decreasing: entering
     return out;
 }
 

@@ -283,10 +283,9 @@ void check_policy(Policy policy, const char* name, const Ray<scalar_t<Prim>>& ra
     // tails are exercised; the first copy must win) answers exactly what the scalar path does.
     // Where accurate is a known open issue (known_issues.hpp: exact expansions out of range) its t
     // also depends on the window, and the scene narrows the window after each hit, so a later
-    // copy could win a tie it should lose: those cases get one copy.
-    const bool window_dependent = known_wrong;
+    // copy could win a tie it should lose: those cases (known_wrong) get one copy.
     Scene<Prim> scene;
-    for (unsigned i = 0; i < (batch::has_bounding_sphere_v<Prim> && !window_dependent ? scene_copies : 1u); ++i) scene.add(prim);
+    for (unsigned i = 0; i < (batch::has_bounding_sphere_v<Prim> && !known_wrong ? scene_copies : 1u); ++i) scene.add(prim);
     const auto scene_hit = intersect(policy, ray, scene);
     if (scene_hit.has_value() != hit.has_value())
         v.push_back({"scene.agrees", p + ": scene " + (scene_hit ? "hit" : "missed") + " but scalar intersect " + (hit ? "hit" : "missed")});
