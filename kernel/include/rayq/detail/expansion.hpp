@@ -97,6 +97,9 @@ public:
         return s;
     }
     std::size_t size() const { return c_.size(); }
+    // The components, increasing in magnitude, their sum the exact value (tests, diagnostics).
+    const T* begin() const { return c_.begin(); }
+    const T* end() const { return c_.end(); }
 
     friend Expansion operator+(const Expansion& a, const Expansion& b)
     {
