@@ -27,19 +27,40 @@ Int scaled(double x, int shift)
 
 int sign(Int x) { return x > 0 ? 1 : (x < 0 ? -1 : 0); }
 
-// The value, ordering and sign of e against the exact integer (scaled by 2^shift).
-void expect_exact(const Expansion<double>& e, Int exact, int shift)
+// The values of x's highest and lowest set bits.
+double highest_bit(double x)
 {
-    Int sum = 0;
+    int e;
+    std::frexp(x, &e);
+    return std::ldexp(1.0, e - 1);
+}
+double lowest_bit(double x)
+{
+    int e;
+    const double m = std::frexp(std::abs(x), &e);
+    const auto bits = static_cast<unsigned long long>(std::ldexp(m, 53));
+    return std::ldexp(1.0, e - 53 + __builtin_ctzll(bits));
+}
+
+// Components increasing and nonoverlapping: each one's highest bit below the next one's lowest.
+void expect_nonoverlapping(const Expansion<double>& e)
+{
     double previous = 0;
     for (double c : e) {
         ASSERT_NE(c, 0.0);
-        // Increasing and nonoverlapping: each component's magnitude exceeds the previous one's
-        // (nonoverlapping components of increasing magnitude double at least once per step).
-        EXPECT_LT(std::abs(previous), std::abs(c));
-        sum += scaled(c, shift);
+        if (previous != 0) {
+            EXPECT_LT(highest_bit(previous), lowest_bit(c)) << previous << " then " << c;
+        }
         previous = c;
     }
+}
+
+// The value, ordering and sign of e against the exact integer (scaled by 2^shift).
+void expect_exact(const Expansion<double>& e, Int exact, int shift)
+{
+    expect_nonoverlapping(e);
+    Int sum = 0;
+    for (double c : e) sum += scaled(c, shift);
     EXPECT_TRUE(sum == exact);
     EXPECT_EQ(e.sign(), sign(exact));
 }
@@ -81,8 +102,7 @@ TEST(Expansion, WideSumsSpillToTheHeapAndCancelExactly)
             terms.push_back(dyadic(rng, 8, -900, 900));
             e += Expansion<double>(terms.back());
             largest = std::max(largest, e.size());
-            double previous = 0;
-            for (double c : e) EXPECT_LT(std::abs(previous), std::abs(c)), previous = c;
+            expect_nonoverlapping(e);
         }
         std::shuffle(terms.begin(), terms.end(), rng);
         for (double x : terms) e = e - Expansion<double>(x);
