@@ -467,5 +467,89 @@ TEST(AccurateRegression, FloatRootBelowFloatRangeOfASphereOfRadius2p127IsRounded
     expect_rounded_root_in_any_window(r, s, 0x1.7081dp-129f);
 }
 
+// Decisions whose exact products leave double's exponent range are made in Dyadic numbers
+// (detail/dyadic.hpp, adaptive_sign); each case below was an open issue under fixtures/fuzz/open/
+// until then (found by the libFuzzer harnesses), with CGAL's answer.
+TEST(AccurateRegression, SphereRootBelowEveryRescaledUnitIsExact)
+{
+    // Radius 2^900, the origin 2^300 off the axis and 2^-301 outside: the root in the rescaled
+    // unit is 2^-1201, and accurate reported only the exit at 2^901. CGAL: 2^-301.
+    const Ray<double> r{{0x1p+900, 0x1p+300, 0.0}, {-1.0, 0.0, 0.0}};
+    const Sphere<double> s{{0.0, 0.0, 0.0}, 0x1p+900};
+    expect_rounded_root_in_any_window(r, s, 0x1p-301);
+}
+
+TEST(AccurateRegression, SphereOfSubnormalRadiusIsLeftAtItsRoundedRoot)
+{
+    // Centred on the origin: the ray leaves at t ~ 4.6e-324 (CGAL), which rounds to 2^-1074;
+    // accurate missed (the radius' square underflows).
+    const Vec3<double> o{-0x1.6bfp-1, 0x1.565p+0, -0x1.a310a0f7d24b2p+373};
+    const Ray<double> r{o, {0x1.a0ap-1, -0x1.594p-4, -0x1.643p-1}};
+    const Sphere<double> s{o, 0x0.0000000000001p-1022};
+    expect_rounded_root_in_any_window(r, s, 0x0.0000000000001p-1022);
+}
+
+TEST(AccurateRegression, SphereOfRadiusDblMaxGivesOneFirstPassage)
+{
+    // The origin lies on its surface (t = 0 is the exit): intersect found the entry, and
+    // intersect_all found no passage.
+    const double max = 0x1.fffffffffffffp+1022;
+    const Ray<double> r{{max, 0.0, 0.0}, {0x1p-1, -0x1.ecp+1, -0x1.e9ecp+1}, -std::numeric_limits<double>::infinity(), 0x1.fdfffffffffffp-6};
+    const Sphere<double> s{{0.0, 0.0, 0.0}, max};
+    expect_rounded_root_in_any_window(r, s, -0x1.14105fdaa47dp+1018);
+    const auto h = intersect(accurate, r, s);
+    const auto all = intersect_all(accurate, r, s);
+    ASSERT_TRUE(h);
+    ASSERT_EQ(all.size(), 2);
+    EXPECT_EQ(all[0].hit.t, h->t);
+    EXPECT_EQ(all[0].hit.t_error, h->t_error);
+    EXPECT_EQ(all[1].hit.t, 0.0);
+}
+
+TEST(AccurateRegression, PlaneNearDblMaxIsRounded)
+{
+    // The origin's x is DBL_MAX: the exact search's expansions overflowed, and t was 7 ulps off.
+    // CGAL: 0x1.69fce58e1a94cp+1021 (0.356 ulps below it).
+    const Ray<double> r{{0x1.fffffffffffffp+1022, 0x1.e7d8p+1, 0x1p-52}, {0x1p-52, -0x1.2a8cp+1, 0x1.fc2p+0}};
+    const Plane<double> p{{0x1.b3c8p+0, -0x1.0ep-4, 0x1.cef8p-1}, {-0x1.de8p-2, -0x1.222cp-1, 0.0}};
+    expect_rounded_root_in_any_window(r, p, 0x1.69fce58e1a94cp+1021);
+}
+
+// Lines that pass these primitives (CGAL: miss) got hits outside them.
+template <class Prim>
+void expect_missed(const Ray<scalar_t<Prim>>& r, const Prim& prim)
+{
+    EXPECT_FALSE(intersect(accurate, r, prim));
+    EXPECT_FALSE(occluded(accurate, r, prim));
+    EXPECT_EQ(intersect_all(accurate, r, prim).size(), 0);
+}
+
+TEST(AccurateRegression, DiskSeenAlongADirectionWithA2m902ComponentIsMissed)
+{
+    // One unit from a disk of radius 0.05; accurate hit at t = 0 with t_error = inf.
+    const Ray<double> r{{0x1p-9, 0x1p-13, 0.0}, {0x1p-4, -0x1.0cp+1, -0x1.0ecb15695bfbdp-902}, -0x1.34fp-1,
+                        std::numeric_limits<double>::infinity()};
+    expect_missed(r, Disk<double>{{0x1.005p+0, 0x1p-14, 0.0}, {0.0, 0.0, 0x1.4p-12}, 0x1.999999999999ap-5});
+}
+
+TEST(AccurateRegression, ParallelogramWithSubnormalEdgeComponentsIsMissed)
+{
+    // A ray nearly in its plane, passing outside it; accurate hit at t = -0 with t_error = inf.
+    const Ray<double> r{{0.0, 0x1.6p-10, 0.0}, {0.0, 0x1.b1ccp+1, 0x1.5d2p-2}, -0x1.0ee8p+1, std::numeric_limits<double>::infinity()};
+    expect_missed(r, Parallelogram<double>{{0.0, 0x1.acp-7, 0x1.4p-2},
+                                           {-0x0.0000000000001p-1022, 0x1.ebcp-1, 0x0.0003e00db43a4p-1022},
+                                           {0.0, 0.0, 0x1.b1ccp+1}});
+}
+
+TEST(AccurateRegression, CapOfAConeOfSize2m129IsMissedFarOutside)
+{
+    // Seen from 8 units away, accurate reported a cap hit 8 units from the cap.
+    const Ray<double> r{{-0x1.04p+3, -0x1.56fda8b8a14aep-129, 0x1.876d8e7911e9ep-128},
+                        {-0x1.24d70a3d70a3dp-7, 0x1.42428f5c28f5cp-8, -0x1.8e6147ae147aep-8}};
+    expect_missed(r, Cone<double>{{-0x1.1905230ae47e2p-129, 0x1.831239a9cfe6ep-133, 0x1.d3662b53a654p-130}, 0x1.d20c389e472a3p-131,
+                                  {-0x1.1905230ae47e2p-129, 0x1.831239a9cfe6ep-133, 0x1.470b12d4a57f5p-129}, 0x1.afae6d361ee0cp-132,
+                                  Caps::both});
+}
+
 }  // namespace
 }  // namespace rayq::test

@@ -119,9 +119,9 @@ inline Hit<scalar_t<Prim>> make_hit(Policy policy, const Ray<scalar_t<Prim>>& ra
     if (exact_decisions && c.rounded) {
         // accurate decided hit, part and window exactly, and certified that t is the exact root
         // correctly rounded (or the float next to the window's end, the root lying within an ulp
-        // of it): the root is within one ulp of t. Roots rounded by the exact search are not
-        // certified so: its expansions are exact only while no product leaves double's range
-        // (planes near DBL_MAX were rounded 7 ulps off), and they get the a-posteriori bound.
+        // of it): the root is within one ulp of t. (The exact search is exact at every magnitude
+        // since its decisions fall back to Dyadic where expansions leave double's range: before,
+        // planes near DBL_MAX were rounded 7 ulps off, and its roots got the a-posteriori bound.)
         t_error = std::max(detail::next_up(c.t) - c.t, c.t - detail::next_down(c.t));
     } else {
         // A posteriori, independent of how t was found: bounds on F(t), F'(t) and a certify how

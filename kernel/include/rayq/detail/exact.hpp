@@ -17,6 +17,7 @@
 
 #include "bounded.hpp"
 #include "double_word.hpp"
+#include "dyadic.hpp"
 #include "expansion.hpp"
 #include "ulp.hpp"
 
@@ -48,7 +49,8 @@ using first_t = typename First<T>::type;
 
 // The sign of expr(N) for the exact inputs: expr is generic over the number type and is called
 // with a zero of first_t<T> (working precision), then wide_t<T> (about twice the precision),
-// and only if neither can decide, of Expansion (exact).
+// and only if neither can decide, of Expansion (exact within the component's range), and if a
+// product left that range on the way, of Dyadic (exact, unbounded exponent).
 template <class T, class Expr>
 inline int adaptive_sign(const Expr& expr)
 {
@@ -59,7 +61,10 @@ inline int adaptive_sign(const Expr& expr)
     if constexpr (!std::is_same_v<first_t<T>, wide_t<T>>)
         if (const int s = certain_sign(expr(wide_t<T>{T(0)}))) return s;
     exact_fallbacks.fetch_add(1, std::memory_order_relaxed);
-    return expr(Expansion<typename ExactComponent<T>::type>{}).sign();
+    const auto x = expr(Expansion<typename ExactComponent<T>::type>{});
+    if (x.exact()) return x.sign();
+    const auto y = expr(Dyadic{});
+    return y.finite() ? y.sign() : x.sign();  // an infinite input (a window end) means what it did
 }
 
 // A point on the ray's parameter line is given exactly as the root t = −g/dg of a linear
@@ -242,10 +247,8 @@ public:
     // The root rounded to nearest (ties to even) in T: a certified Newton step in double-word
     // arithmetic from a working-precision guess (enough for most rays), else from a double-word
     // guess (cancellation in the coefficients: far away, near tangency), else an exact search.
-    // `certified` says whether a running-error certificate (interval or Newton) decided it.
-    T round(int which, bool* certified = nullptr) const
+    T round(int which) const
     {
-        if (certified) *certified = true;
         if constexpr (std::is_same_v<first_t<T>, Bounded<T>>) {
             if (const auto quick = newton_round(which, guess<Bounded<T>>(which))) return *quick;
         } else {
@@ -253,7 +256,6 @@ public:
         }
         const T careful = guess<wide_t<T>>(which);
         if (const auto quick = newton_round(which, careful)) return *quick;
-        if (certified) *certified = false;
         return search_round(which, careful);
     }
     // The root from the first filter's coefficients with a certified interval (root_intervals),

@@ -187,20 +187,11 @@ private:
         const int slot = e.kind == EndKind::root ? e.which : (e.kind == EndKind::cap0 ? 2 : 3);
         if (!cache_[slot]) {
             const Quadratic& q = quadratic(e);
-            cache_[slot] = q.round(e.which, &certified_[slot]);
+            cache_[slot] = q.round(e.which);
         }
         return *cache_[slot];
     }
 
-public:
-    // Whether value(e)'s rounding was certified by running error bounds (ExactQuadratic::round).
-    bool certified(End e) const
-    {
-        rounded(e);
-        return certified_[e.kind == EndKind::root ? e.which : (e.kind == EndKind::cap0 ? 2 : 3)];
-    }
-
-private:
     // A certified interval around the end (memoized): its rounded value's neighbours when that is
     // already known, else the quadratic's cheap enclosure.
     std::optional<std::pair<T, T>> enclosure(End e) const
@@ -230,7 +221,6 @@ private:
     Quadratic side_;
     std::optional<Quadratic> cap0_, cap1_;
     mutable std::optional<T> cache_[4];  // rounded values: root 0, root 1, cap0, cap1
-    mutable bool certified_[4] = {};     // and whether a running-error certificate rounded them
     mutable std::optional<std::optional<std::pair<T, T>>> enclosed_[4];  // their enclosures, once tried
 };
 
@@ -272,17 +262,13 @@ inline Crossings<T> solid_crossings(const Solid& solid, bool axial, bool capped,
                 if (e.finite() && solid.compare(slab_in, e) <= 0 && solid.compare(e, slab_out) <= 0) found[n++] = {e, Part::surface, entering};
         }
     }
-    // The ends are in ascending exact order, so correctly rounded values are too; the running
-    // maximum keeps the order where expansions underflowed and a value is not correctly rounded
-    // (subnormal differences: found by the axial and transformed libFuzzer harnesses' ascending
-    // invariant on cones of size 2^-511 and with a 3·2^-1074 apex coordinate).
+    // The ends are in ascending exact order, so their correctly rounded values are too (before
+    // Dyadic, expansions that underflowed broke this: the axial and transformed libFuzzer
+    // harnesses' ascending invariant on cones of size 2^-511 and with a 3·2^-1074 apex coordinate).
     Crossings<T> out;
     for (int i = 0; i < n && out.count < limit; ++i)
-        if (found[i].end.finite() && solid.in_window(found[i].end)) {
-            const T t = solid.value(found[i].end);
-            const bool ordered = out.count == 0 || !(t < out.item[out.count - 1].t);
-            out.add(ordered ? t : out.item[out.count - 1].t, found[i].part, found[i].entering, ordered && solid.certified(found[i].end));
-        }
+        if (found[i].end.finite() && solid.in_window(found[i].end))
+            out.add(solid.value(found[i].end), found[i].part, found[i].entering, true);
     return out;
 }
 
@@ -532,7 +518,10 @@ inline Crossings<scalar_t<Prim>> exact_curved_crossings_in_unit(const Ray<scalar
             }
         }
     }
-    if (!out) return exact_curved_crossings_unscaled(ray, prim, axial, capped, ends, limit);
+    // Where no unit holds every root above T's subnormals (a sphere of radius 2^900 with the origin
+    // 2^-301 outside it: t' = 2^-1201), the inputs are solved as they are: their decisions then
+    // leave the expansions' range and are made in Dyadic (adaptive_sign), slower but exact.
+    if (!out || lost_bits(*out)) return exact_curved_crossings_unscaled(ray, prim, axial, capped, ends, limit);
     for (Crossing<T>& c : out->item) {
         c.t = inside_window(ray, unscaled_t(c, shift, *unit, axial, capped, ends));  // exact unless subnormal or beyond the largest float
     }
@@ -668,7 +657,6 @@ public:
 
     // The end's t correctly rounded.
     float value(End e) const { return e.kind == EndKind::root ? side_.rounded(e.which) : (e.kind == EndKind::cap0 ? *cap0_ : *cap1_).rounded(0); }
-    bool certified(End) const { return true; }
 
 private:
     // t = 0 enters as a constant, not as a float factor (the degrees count float factors).
@@ -807,8 +795,7 @@ inline Crossings<scalar_t<Prim>> exact_flat_crossing(const Ray<scalar_t<Prim>>& 
     const ExactQuadratic<T, Coef> plane(Coef{&prim, &ray, Part::surface});
     Crossings<T> out;
     if (plane.sign_b() == 0) return out;  // parallel to the plane, or in it
-    bool certified = false;
-    T t = plane.round(0, &certified);
+    const T t = plane.round(0);
     // The exact root lies strictly between t's neighbours: decide the window from them when they
     // suffice, exactly otherwise.
     const auto after = [&](T x) {
@@ -824,7 +811,7 @@ inline Crossings<scalar_t<Prim>> exact_flat_crossing(const Ray<scalar_t<Prim>>& 
         return plane.compare(0, FloatLine<T>{-x, T(1)}) > 0;
     };
     if (!after(ray.tmin) || !before(ray.tmax) || !inside(plane)) return out;
-    out.add(inside_window(ray, t), Part::surface, plane.sign_b() < 0, certified);  // F = (o + t·d − p)·n decreasing: entering
+    out.add(inside_window(ray, t), Part::surface, plane.sign_b() < 0, true);  // F = (o + t·d − p)·n decreasing: entering
     return out;
 }
 

@@ -1,13 +1,15 @@
 // rayq — exact arithmetic on floating-point expansions (Shewchuk, "Adaptive Precision
 // Floating-Point Arithmetic and Fast Robust Geometric Predicates", 1997): a value is an unevaluated
 // sum of non-overlapping floats, so +, − and × are exact. Used only where a filtered decision could
-// not be made (see adaptive.hpp). Exact while no product under- or overflows, i.e. for inputs
-// whose magnitudes stay within about 2^±(max_exponent / degree) of each other.
+// not be made (adaptive_sign, exact.hpp). Exact while no product under- or overflows, i.e. for
+// inputs whose magnitudes stay within about 2^±(max_exponent / degree) of each other; an expansion
+// says when one did (exact()), and the caller turns to Dyadic (dyadic.hpp).
 #pragma once
 
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -87,7 +89,12 @@ public:
     Expansion(T x)  // NOLINT(google-explicit-constructor): numbers convert implicitly, as for Bounded
     {
         if (x != T(0)) c_.push_back(x);
+        exact_ = std::abs(x) <= std::numeric_limits<T>::max();
     }
+
+    // False once an input was not finite or a product or sum left T's range on the way here: the
+    // components then no longer sum to the exact value.
+    bool exact() const { return exact_; }
 
     int sign() const { return c_.empty() ? 0 : (c_.back() > T(0) ? 1 : -1); }
     T estimate() const
@@ -105,6 +112,7 @@ public:
     {
         Expansion r = sum(a, b);
         r.compress();
+        r.exact_ = r.exact_ && a.exact_ && b.exact_;
         return r;
     }
     friend Expansion operator-(const Expansion& a) { Expansion r = a; for (T& x : r.c_) x = -x; return r; }
@@ -118,9 +126,12 @@ public:
         Expansion r;
         for (T x : small.c_) {
             Expansion partial = scaled(big, x);
+            const bool exact = r.exact_ && partial.exact_;
             r = r.c_.empty() ? std::move(partial) : sum(r, partial);
             r.compress();
+            r.exact_ = r.exact_ && exact;
         }
+        r.exact_ = r.exact_ && a.exact_ && b.exact_;
         return r;
     }
     friend Expansion& operator+=(Expansion& a, const Expansion& b) { return a = a + b; }
@@ -159,11 +170,22 @@ private:
     {
         Expansion h;
         if (e.c_.empty() || b == T(0)) return h;
-        const Pair<T> first = two_product(e.c_.data()[0], b);
+        // Two-Product is exact when |p| >= 2^(min_exponent − 1 + digits) (its error term's last bit
+        // is then representable) and, without FMA, no factor overflows Veltkamp's split (eft.hpp).
+        using limits = std::numeric_limits<T>;
+        const T tiny = std::ldexp(T(1), limits::min_exponent - 1 + limits::digits);
+        const T huge = std::ldexp(T(1), limits::max_exponent - limits::digits / 2 - 2);
+        const auto product = [&](T x) {
+            const Pair<T> p = two_product(x, b);
+            const T m = std::abs(p.hi);
+            h.exact_ = h.exact_ && m >= tiny && m <= limits::max() && std::abs(x) <= huge && std::abs(b) <= huge;
+            return p;
+        };
+        const Pair<T> first = product(e.c_.data()[0]);
         if (first.lo != T(0)) h.c_.push_back(first.lo);
         T q = first.hi;
         for (std::size_t i = 1; i < e.size(); ++i) {
-            const Pair<T> p = two_product(e.c_.data()[i], b);
+            const Pair<T> p = product(e.c_.data()[i]);
             const Pair<T> s = two_sum(q, p.lo);
             if (s.lo != T(0)) h.c_.push_back(s.lo);
             const Pair<T> t = two_sum(p.hi, s.hi);
@@ -179,6 +201,8 @@ private:
     void compress()
     {
         const int n = static_cast<int>(c_.size());
+        // A sum that overflowed left an infinity or NaN, which the largest component carries on.
+        if (n > 0) exact_ = exact_ && std::abs(c_[n - 1]) <= std::numeric_limits<T>::max();
         if (n < 2) return;
         T* h = c_.data();
         int bottom = n - 1;
@@ -206,6 +230,7 @@ private:
     }
 
     Components<T> c_;  // increasing magnitude, no zeros
+    bool exact_ = true;
 };
 
 }  // namespace rayq::detail

@@ -1,0 +1,129 @@
+// Dyadic numbers (detail/dyadic.hpp), the accurate policy's last resort when an expansion leaves
+// double's range: sums and products of dyadic inputs against 128-bit integers, values far beyond
+// double's exponent range held exactly, and adaptive_sign turning to them exactly when an
+// expansion says its products under- or overflowed (Expansion::exact()).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include <rayq/detail/dyadic.hpp>
+#include <rayq/detail/exact.hpp>
+#include <rayq/detail/expansion.hpp>
+
+namespace rayq::detail {
+namespace {
+
+__extension__ typedef __int128 Int;  // NOLINT: GCC and clang's 128-bit integer, exact up to 2^127
+
+int sign(Int x) { return x > 0 ? 1 : (x < 0 ? -1 : 0); }
+
+// x's value as frexp gives it: x = mantissa·2^exponent, mantissa in [1/2, 1).
+void expect_value(const Dyadic& x, double mantissa, long exponent)
+{
+    const auto [m, e] = x.frexp();
+    EXPECT_EQ(m, mantissa);
+    EXPECT_EQ(e, exponent);
+}
+
+TEST(Dyadic, SumsAndProductsOfDyadicInputsMatchIntegers)
+{
+    std::mt19937_64 rng(13);
+    std::uniform_int_distribution<long long> mantissa(-(1LL << 30), 1LL << 30);
+    std::uniform_int_distribution<int> shift(0, 20);
+    for (int i = 0; i < 20000; ++i) {
+        // Inputs k·2^-s with |k| < 2^30, s <= 20: exact as integers once scaled by 2^20 (or 2^40
+        // for products), |a·b − c·d + e| < 2^102.
+        long long k[5];
+        int s[5];
+        double x[5];
+        for (int j = 0; j < 5; ++j) k[j] = mantissa(rng), s[j] = shift(rng), x[j] = std::ldexp(double(k[j]), -s[j]);
+        const auto as_int = [&](int j, int scale) { return Int(k[j]) << (scale - s[j]); };
+        const Int exact = as_int(0, 20) * as_int(1, 20) - as_int(2, 20) * as_int(3, 20) + (as_int(4, 20) << 20);
+        const Dyadic v = Dyadic(x[0]) * Dyadic(x[1]) - Dyadic(x[2]) * Dyadic(x[3]) + Dyadic(x[4]);
+        ASSERT_EQ(v.sign(), sign(exact)) << i;
+        // The value itself: the integer's top bits and exponent.
+        if (exact != 0) {
+            const Int magnitude = exact < 0 ? -exact : exact;
+            int bits = 0;
+            while ((magnitude >> bits) != 0) ++bits;
+            const int drop = bits > 53 ? bits - 53 : 0;
+            const double top = std::ldexp(double(magnitude >> drop), -(bits - drop));  // in [1/2, 1), truncated
+            const auto [m, e] = v.frexp();
+            ASSERT_EQ(std::abs(m), top) << i;
+            ASSERT_EQ(e, long(bits) - 40) << i;
+        }
+    }
+}
+
+TEST(Dyadic, HoldsValuesBeyondDoublesRange)
+{
+    const double max = std::numeric_limits<double>::max(), sub = std::numeric_limits<double>::denorm_min();
+    // (max + 2^-1074) − max: a sum spanning 2^2098, exactly the subnormal.
+    const Dyadic tiny = (Dyadic(max) + Dyadic(sub)) - Dyadic(max);
+    EXPECT_EQ(tiny.sign(), 1);
+    expect_value(tiny, 0.5, -1073);
+    // Twelve factors of 2^-1074 (as a length of degree twelve would take): 2^-12888, positive.
+    Dyadic p(1.0);
+    for (int i = 0; i < 12; ++i) p = p * Dyadic(sub);
+    expect_value(p, 0.5, -12888 + 1);
+    // max² − max² + 2^-1074·2^-1074 is positive: the square of the subnormal survives.
+    const Dyadic d = Dyadic(max) * Dyadic(max) - Dyadic(max) * Dyadic(max) + Dyadic(sub) * Dyadic(sub);
+    EXPECT_EQ(d.sign(), 1);
+    expect_value(d, 0.5, -2147);
+    EXPECT_EQ((Dyadic(max) * Dyadic(-max) + Dyadic(max) * Dyadic(max)).sign(), 0);
+    // Negation and cancellation in both orders.
+    EXPECT_EQ((Dyadic(sub) - Dyadic(2 * sub)).sign(), -1);
+    EXPECT_EQ((Dyadic(-0.75f) + Dyadic(0.5) + Dyadic(0.25)).sign(), 0);
+}
+
+TEST(Dyadic, NonFiniteInputsAreFlagged)
+{
+    const double inf = std::numeric_limits<double>::infinity();
+    EXPECT_FALSE((Dyadic(inf) + Dyadic(1.0)).finite());
+    EXPECT_FALSE((Dyadic(1.0) * Dyadic(std::nan(""))).finite());
+    EXPECT_TRUE((Dyadic(1.0) * Dyadic(2.0)).finite());
+}
+
+TEST(Dyadic, ExpansionsSayWhenTheirProductsLeaveTheRange)
+{
+    using E = Expansion<double>;
+    EXPECT_TRUE((E(0x1p-400) * E(0x1p-500) + E(1.0)).exact());
+    EXPECT_FALSE((E(0x1p-600) * E(0x1p-600)).exact());                 // underflows to zero
+    EXPECT_FALSE((E(0x1p-500) * E(0x1.0000000000001p-500)).exact());  // its error term would be subnormal
+    EXPECT_FALSE((E(0x1p600) * E(0x1p600)).exact());                  // overflows
+    EXPECT_FALSE((E(std::numeric_limits<double>::max()) + E(std::numeric_limits<double>::max())).exact());
+    EXPECT_FALSE((E(std::numeric_limits<double>::infinity()) * E(1.0)).exact());
+    EXPECT_FALSE(((E(0x1p-600) * E(0x1p-600)) + E(1.0)).exact());      // and stays so
+}
+
+TEST(Dyadic, AdaptiveSignTurnsToDyadicWhenExpansionsLeaveTheRange)
+{
+    // 2^-600·2^-600 − 2^-1000·2^-200: the products underflow in every floating-point stage (to zero, or
+    // to a bound no filter can decide), so only Dyadic can tell that the value is 0, then 2^-1201 > 0.
+    const int s = adaptive_sign<double>([](auto zero) {
+        using N = decltype(zero);
+        return N{0x1p-600} * N{0x1p-600} - N{0x1p-1000} * N{0x1p-200};
+    });
+    EXPECT_EQ(s, 0);
+    const int positive = adaptive_sign<double>([](auto zero) {
+        using N = decltype(zero);
+        return N{0x1p-600} * N{0x1.8p-600} - N{0x1p-1000} * N{0x1p-200};
+    });
+    EXPECT_EQ(positive, 1);
+    // 2^600·2^600 − 2^1000·2^200 overflows instead; the exact value is 0, then −2^1199.
+    const int zero = adaptive_sign<double>([](auto z) {
+        using N = decltype(z);
+        return N{0x1p600} * N{0x1p600} - N{0x1p1000} * N{0x1p200};
+    });
+    EXPECT_EQ(zero, 0);
+    const int negative = adaptive_sign<double>([](auto z) {
+        using N = decltype(z);
+        return N{0x1p600} * N{0x1p599} - N{0x1p1000} * N{0x1p200};
+    });
+    EXPECT_EQ(negative, -1);
+}
+
+}  // namespace
+}  // namespace rayq::detail
