@@ -362,6 +362,8 @@ void expect_rounded_root_in_any_window(const Ray<scalar_t<Prim>>& r, const Prim&
     const auto h = intersect(accurate, r, prim);
     ASSERT_TRUE(h);
     EXPECT_EQ(h->t, exact_rounded);
+    // Correctly rounded, so within one ulp (the bound accurate reports for its exact path).
+    EXPECT_EQ(h->t_error, std::max(detail::next_up(h->t) - h->t, h->t - detail::next_down(h->t)));
     Ray<scalar_t<Prim>> narrow = r;
     narrow.tmax = detail::next_up(h->t);
     const auto hn = intersect(accurate, narrow, prim);

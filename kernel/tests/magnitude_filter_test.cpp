@@ -89,7 +89,7 @@ TEST(MagnitudeFilter, QuickLaneAgreesWithTheExactPath)
                               float(s.center.z + 1.2 * s.radius * u(rng))};
         Ray<float> r{o, aim - o};
         if (i % 4 == 1) r.tmin = float(std::abs(u(rng))), r.tmax = float(1 + std::abs(u(rng)));  // windows that cut the roots
-        const float reach = detail::length_profile(r, s).reach;
+        const float reach = detail::reach_of(r, s);
         for (const int limit : {1, 2}) {
             ++rays;
             const auto quick = detail::quick_curved_crossings(r, s, false, false, {false, false}, limit);
@@ -124,9 +124,9 @@ TEST(MagnitudeFilter, QuickLaneDeclinesOutOfRange)
 }
 
 // The closest hit and all crossings take the same lane: with a direction component 2^-63 beside
-// 1 the exact path's certificates do not hold (t_error is the a-posteriori bound), and the quick
-// lane once answered the closest hit alone (t_error one ulp), so intersect and intersect_all's
-// first passage differed (sphere libFuzzer harness).
+// 1 the exact path's certificates were not trusted then (t_error was the a-posteriori bound), and
+// the quick lane once answered the closest hit alone (t_error one ulp), so intersect and
+// intersect_all's first passage differed (sphere libFuzzer harness).
 TEST(MagnitudeFilter, ClosestHitAndAllCrossingsAgreeInEveryField)
 {
     const Ray<float> r{{0.0f, 0x1p-63f, -0x1.a24e54p+44f}, {0.0f, 0.0f, 1.0f}};
@@ -237,7 +237,7 @@ TEST(MagnitudeFilter, AxialQuickLaneAgreesWithTheExactPath)
         if (i % 8 == 5) r.direction = (p1 - p0) + point(0.01 * scale);  // nearly along the axis
         if (i % 4 == 1) r.tmin = float(std::abs(u(rng))), r.tmax = float(1 + std::abs(u(rng)));
         const auto check = [&](const auto& prim, detail::CapEnds ends, const char* what) {
-            const float reach = detail::length_profile(r, prim).reach;
+            const float reach = detail::reach_of(r, prim);
             for (const int limit : {1, 2}) {
                 ++rays;
                 const auto quick = detail::quick_curved_crossings(r, prim, true, prim.caps == Caps::both, ends, limit);

@@ -402,54 +402,19 @@ inline scalar_t<Prim> unscaled_t(const Crossing<scalar_t<Prim>>& c, int shift, c
         [&](T lo, T hi) { return holds(exact_curved_crossings_unscaled(with_window(unit.ray, lo, hi), unit.prim, axial, capped, ends, 2), c); });
 }
 
-// What the exact path needs to know of a primitive's points and radii (each_length), in one walk.
-template <class T>
-struct LengthProfile {
-    T reach = T(0);    // the largest radius or distance from the ray's origin to a point: the unit
-    T largest = T(0);  // the largest and the smallest nonzero magnitude among those and the
-    T finest = std::numeric_limits<T>::infinity();  // point-to-point differences
-};
-
+// The exact path's unit of length: the largest radius or distance from the ray's origin to one of
+// the primitive's points (each_length).
 template <class Prim>
-inline LengthProfile<scalar_t<Prim>> length_profile(const Ray<scalar_t<Prim>>& ray, const Prim& prim)
+inline scalar_t<Prim> reach_of(const Ray<scalar_t<Prim>>& ray, const Prim& prim)
 {
     using T = scalar_t<Prim>;
-    LengthProfile<T> out;
-    const auto see = [&](T x, bool from_origin) {
-        x = std::abs(x);
-        if (from_origin) out.reach = std::max(out.reach, x);
-        out.largest = std::max(out.largest, x);
-        if (x != T(0)) out.finest = std::min(out.finest, x);
-    };
-    const Vec3<T>* previous = nullptr;
+    T reach = T(0);
+    const auto see = [&](T x) { reach = std::max(reach, std::abs(x)); };
     each_length(prim, [&](const auto& x) {
-        if constexpr (std::is_same_v<std::decay_t<decltype(x)>, T>) {
-            see(x, true);
-        } else {
-            see(x.x - ray.origin.x, true), see(x.y - ray.origin.y, true), see(x.z - ray.origin.z, true);
-            if (previous) see(x.x - previous->x, false), see(x.y - previous->y, false), see(x.z - previous->z, false);
-            previous = &x;
-        }
+        if constexpr (std::is_same_v<std::decay_t<decltype(x)>, T>) see(x);
+        else see(x.x - ray.origin.x), see(x.y - ray.origin.y), see(x.z - ray.origin.z);
     });
-    return out;
-}
-
-// Whether the certificates that let a hit report t_error = one ulp (ExactQuadratic::interval_round
-// and newton_round: running error bounds) can be trusted: their error bounds are relative, and
-// a product that underflows breaks them. Products have up to twelve factors; with every nonzero
-// radius, point-to-origin and point-to-point difference within 2^-60 of the largest length, and
-// every nonzero direction component within 2^-60 of the largest, none falls below 2^-720 of the
-// largest product (exact_curved_crossings has scaled the largest length and direction to ~1).
-// Found by the axial libFuzzer harness: a double cone of size 2^-124 seen from 0.06 away got a
-// certified t 10% off the exact root (CGAL) with t_error = 0.125.
-template <class T>
-inline bool certificates_hold(const Ray<T>& ray, const LengthProfile<T>& lengths)
-{
-    const T dx = std::abs(ray.direction.x), dy = std::abs(ray.direction.y), dz = std::abs(ray.direction.z);
-    const T least = std::max({dx, dy, dz}) * T(0x1p-60);  // multiplying by 2^-60 rounds down, if at all
-    const bool direction_ok = (dx == T(0) || dx >= least) && (dy == T(0) || dy >= least) && (dz == T(0) || dz >= least);
-    return direction_ok && lengths.largest < std::numeric_limits<T>::infinity() &&
-           (lengths.largest == T(0) || lengths.finest >= lengths.largest * T(0x1p-60));
+    return reach;
 }
 
 // The same, with the inputs' units changed first when their magnitudes are far from 1. Expansions
@@ -533,7 +498,7 @@ inline Crossings<float> float_crossings_in_double(const Ray<float>& ray, const P
 {
     const Ray<double> wide_ray = scalar_cast<double>(ray);
     const auto wide = scalar_cast<double>(prim);
-    const double reach = length_profile(wide_ray, wide).reach;
+    const double reach = reach_of(wide_ray, wide);
     Crossings<float> out;
     for (const Crossing<double>& c : exact_curved_crossings_in_unit(wide_ray, wide, axial, capped, ends, limit, reach)) {
         const float t = rounded_once<float>(
@@ -729,11 +694,7 @@ inline Crossings<scalar_t<Prim>> exact_curved_crossings(const Ray<scalar_t<Prim>
 {
     if constexpr (std::is_same_v<scalar_t<Prim>, float>)
         if (const auto quick = quick_curved_crossings(ray, prim, axial, capped, ends, limit)) return *quick;
-    const LengthProfile<scalar_t<Prim>> lengths = length_profile(ray, prim);
-    Crossings<scalar_t<Prim>> out = exact_curved_crossings_in_unit(ray, prim, axial, capped, ends, limit, lengths.reach);
-    if (out.count > 0 && !certificates_hold(ray, lengths))
-        for (auto& c : out.item) c.rounded = false;
-    return out;
+    return exact_curved_crossings_in_unit(ray, prim, axial, capped, ends, limit, reach_of(ray, prim));
 }
 
 }  // namespace rayq::detail
