@@ -109,7 +109,13 @@ void brackets(const Alg& x, const Q& D, T& down, T& up)
 {
     constexpr T inf = std::numeric_limits<T>::infinity();
     const T c = round_nearest<T>(x, D);
-    const int s = std::isfinite(c) ? compare(x, exact_of(c), D) : 0;
+    if (!std::isfinite(c)) {  // beyond the largest T: between it and the infinity of its sign
+        const T max = std::numeric_limits<T>::max();
+        if (c > 0) down = max, up = c;
+        else down = c, up = -max;
+        return;
+    }
+    const int s = compare(x, exact_of(c), D);
     if (s == 0) down = up = c;
     else if (s > 0) down = c, up = std::nextafter(c, inf);
     else up = c, down = std::nextafter(c, -inf);
@@ -120,7 +126,7 @@ Q ulp_at(const Alg& x, const Q& D)
 {
     T down, up;
     brackets<T>(x, D, down, up);
-    const T toward_zero = std::fabs(sign(x, D) >= 0 ? down : up);
+    const T toward_zero = std::fabs(sign(x, D) >= 0 ? down : up);  // finite: brackets beyond the range end at ±max
     return succ(toward_zero) - exact_of(toward_zero);
 }
 

@@ -88,7 +88,8 @@ struct Measurement {
     double ulps = 0;       // |t_kernel − t_exact| / ulp_T(t_exact); ulp_T(x) = the spacing of T
                            // above the T value next to x toward zero; computed to 256 bits, then rounded
     double rel_error = 0;  // |t_kernel − t_exact| / |t_exact| (inf when t_exact = 0 ≠ t_kernel)
-    bool faithful = false; // t_kernel is one of the two T values bracketing t_exact (or equals it)
+    bool faithful = false; // t_kernel is one of the two T values bracketing t_exact (or equals it;
+                           // beyond the largest T, the largest T of its sign and infinity)
     bool bounded = false;  // the kernel's t_error is finite
     bool bound_violated = false;  // exactly: |t_kernel − t_exact| > t_error (a NaN or negative t_error counts)
     bool uncertified = false;     // a violation where no exact crossing of the line at all lies within t_error
