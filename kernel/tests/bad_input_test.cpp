@@ -114,18 +114,26 @@ TEST(BadInput, HitPointNearTheLargestFloatSaturates)
                                     {0x1.28ad9ap-2f, 0x1.75053ap-1f, -0x1.3dcc2ep-1f, -0x1.856e7p+13f},
                                     {0x1.f3e5ap-5f, 0x1.4429f8p-1f, 0x1.8b13a6p-1f, 0x1.3935ecp+13f}}};
     const Transformed<Plane<float>> x{plane, to_world, to_object};
-    int hits = 0;
     const auto check = [&](auto policy) {
         const auto h = checked_intersect(policy, r, x);
         if (!h) return;
-        ++hits;
         EXPECT_EQ(h->point.z, std::numeric_limits<float>::max());
         EXPECT_EQ(h->point_error.z, std::numeric_limits<float>::infinity());
     };
     check(fast);
     check(stable);
     check(accurate);
-    EXPECT_GT(hits, 0) << "the reproducer no longer reaches the overflow";
+    // Its object-space origin overflows to infinity (z), where accurate's exact signs once took
+    // infinite expansions at face value and hit at FLT_MAX; no policy hits it now. A plain plane
+    // at z = FLT_MAX, reached along z = 1.0036…, still reaches the overflow: t·d rounds past
+    // FLT_MAX.
+    const Ray<float> along{{0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 0x1.003adp+0f}, 0.0f, std::numeric_limits<float>::infinity()};
+    const Plane<float> top{{0.0f, 0.0f, std::numeric_limits<float>::max()}, {0.0f, 0.0f, 1.0f}};
+    const auto h = checked_intersect(accurate, along, top);
+    ASSERT_TRUE(h);
+    EXPECT_FALSE(h->t * along.direction.z <= std::numeric_limits<float>::max()) << "the reproducer no longer reaches the overflow";
+    EXPECT_EQ(h->point.z, std::numeric_limits<float>::max());
+    EXPECT_EQ(h->point_error.z, std::numeric_limits<float>::infinity());
 }
 
 }  // namespace

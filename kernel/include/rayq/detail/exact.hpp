@@ -90,7 +90,7 @@ template <class T, class Coef, class Line>
 inline int quadratic_sign_at(const Coef& coef, const Line& x)
 {
     return adaptive_sign<T>([&](auto zero) {
-        const auto r = coef(zero);
+        const auto& r = coef(zero);
         const auto l = x(zero);
         return r.f * l.df * l.df - r.df * l.f * l.df + r.a * l.f * l.f;
     });
@@ -156,7 +156,7 @@ public:
         if (sign_a_ != 0) {
             // The first filter's discriminant is kept: interval_round's roots start from it.
             const auto discriminant = [&](auto zero) {
-                const auto r = at_zero(zero);
+                const auto& r = at_zero(zero);
                 return r.df * r.df - decltype(zero){T(4)} * r.a * r.f;
             };
             disc0_ = discriminant(first_t<T>{T(0)});
@@ -178,7 +178,7 @@ public:
     template <class Line>
     int sign_at(const Line& x) const
     {
-        return quadratic_sign_at<T>([&](auto zero) { return at_zero(zero); }, x);
+        return quadratic_sign_at<T>([&](auto zero) -> const auto& { return at_zero(zero); }, x);
     }
 
     // sign(x − r) for r the smaller (which = 0) or larger (which = 1) real root, x = −g/dg.
@@ -188,7 +188,7 @@ public:
     {
         if (sign_a_ == 0) {  // root −c/b: sign(−g/dg + c/b) = sign(c·dg − g·b)·sign(b)·sign(dg)
             const int s = adaptive_sign<T>([&](auto zero) {
-                const auto r = at_zero(zero);
+                const auto& r = at_zero(zero);
                 const auto l = x(zero);
                 return r.f * l.df - l.f * r.df;
             });
@@ -199,7 +199,7 @@ public:
         if (inside < 0) return which == 0 ? 1 : -1;
         // Side of the vertex −b/2a: sign(x − vertex) = sign(b·dg − 2a·g)·sign(a)·sign(dg).
         const int side = sign_a_ * line_direction(x) * adaptive_sign<T>([&](auto zero) {
-                             const auto r = at_zero(zero);
+                             const auto& r = at_zero(zero);
                              const auto l = x(zero);
                              return r.df * l.df - decltype(zero){T(2)} * r.a * l.f;
                          });
@@ -356,18 +356,23 @@ public:
     }
 
 private:
-    // The coefficients at t = 0, computed once per quadratic in the two filter precisions (every
-    // sign and comparison starts from them); exact expansions are recomputed when needed.
+    // The coefficients at t = 0, computed once per quadratic in each number type (every sign and
+    // comparison starts from them; the exact search compares dozens of floats with the root, and
+    // recomputing a cone's exact coefficients for each was most of its cost).
     template <class N>
-    Residual<N> at_zero(N zero) const
+    const Residual<N>& at_zero(N zero) const
     {
         if constexpr (std::is_same_v<N, first_t<T>>) {
             return first0_;
         } else if constexpr (std::is_same_v<N, wide_t<T>>) {
             if (!wide0_) wide0_ = coef_(zero);
             return *wide0_;
+        } else if constexpr (std::is_same_v<N, Dyadic>) {
+            if (!dyadic0_) dyadic0_ = coef_(zero);
+            return *dyadic0_;
         } else {
-            return coef_(zero);
+            if (!exact0_) exact0_ = coef_(zero);
+            return *exact0_;
         }
     }
 
@@ -406,6 +411,8 @@ private:
     Residual<first_t<T>> first0_;
     first_t<T> disc0_{T(0)};  // F'(0)² − 4·a·F(0) in the first filter (quadratic case)
     mutable std::optional<Residual<wide_t<T>>> wide0_;
+    mutable std::optional<Residual<Expansion<typename ExactComponent<T>::type>>> exact0_;
+    mutable std::optional<Residual<Dyadic>> dyadic0_;
     int sign_a_ = 0, sign_disc_ = 0, sign_b_ = 0, sign_c_ = 0;
 };
 

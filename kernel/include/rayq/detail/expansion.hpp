@@ -88,12 +88,13 @@ public:
     Expansion() = default;
     Expansion(T x)  // NOLINT(google-explicit-constructor): numbers convert implicitly, as for Bounded
     {
-        if (x != T(0)) c_.push_back(x);
         exact_ = std::abs(x) <= std::numeric_limits<T>::max();
+        if (x != T(0) && exact_) c_.push_back(x);
     }
 
-    // False once an input was not finite or a product or sum left T's range on the way here: the
-    // components then no longer sum to the exact value.
+    // False once an input was not finite, a product or sum left T's range on the way here, or the
+    // expansion grew beyond max_components: its value is then lost (no components), and the
+    // caller turns to Dyadic.
     bool exact() const { return exact_; }
 
     int sign() const { return c_.empty() ? 0 : (c_.back() > T(0) ? 1 : -1); }
@@ -110,6 +111,7 @@ public:
 
     friend Expansion operator+(const Expansion& a, const Expansion& b)
     {
+        if (!a.exact_ || !b.exact_) return given_up();
         Expansion r = sum(a, b);
         r.compress();
         r.exact_ = r.exact_ && a.exact_ && b.exact_;
@@ -121,6 +123,7 @@ public:
     // of the shorter), each added in one linear pass.
     friend Expansion operator*(const Expansion& a, const Expansion& b)
     {
+        if (!a.exact_ || !b.exact_) return given_up();
         const Expansion& big = a.size() >= b.size() ? a : b;
         const Expansion& small = a.size() >= b.size() ? b : a;
         Expansion r;
@@ -137,6 +140,16 @@ public:
     friend Expansion& operator+=(Expansion& a, const Expansion& b) { return a = a + b; }
 
 private:
+    static constexpr std::size_t max_components = 32;
+
+    // An expansion that is no longer exact keeps no components: what follows it costs nothing.
+    static Expansion given_up()
+    {
+        Expansion r;
+        r.exact_ = false;
+        return r;
+    }
+
     // LINEAR-EXPANSION-SUM with zero elimination (Shewchuk, Theorem 13; round-to-nearest-even):
     // e + f for nonoverlapping e and f, nonoverlapping and increasing, in one pass over their
     // components merged by magnitude. (Two-Sum stands where Shewchuk's proof allows Fast-Two-Sum:
@@ -227,6 +240,12 @@ private:
         h[top++] = q;
         c_.shrink_to(top);
         if (top == 1 && c_[0] == T(0)) c_.clear();
+        // So many components mean inputs whose exponents span thousands of bits (1e9 beside
+        // 2^-1000): products then cost the square of the length, and a cone's discriminant took
+        // seconds (the axial edge cases under RAYQ_FUZZ_STRICT). Dyadic's limbs are cheaper there:
+        // give up, and let the caller evaluate again in Dyadic.
+        if (c_.size() > max_components) exact_ = false;
+        if (!exact_) c_.clear();
     }
 
     Components<T> c_;  // increasing magnitude, no zeros
