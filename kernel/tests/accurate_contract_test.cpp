@@ -553,5 +553,20 @@ TEST(AccurateRegression, CapOfAConeOfSize2m129IsMissedFarOutside)
                                   Caps::both});
 }
 
+TEST(AccurateRegression, ZeroRootIsPositiveZeroInEveryQuery)
+{
+    // The origin lies on a sphere of radius 2^-511: the root t = 0 came out as −0 from intersect
+    // and +0 from intersect_all (sphere libFuzzer harness).
+    const Ray<double> r{{-0.0, 0x1p-511, -0x1.c9ccp+1}, {-0x1p-1022, -0x1.ccp+3, 0x1p-511}, -0x1.8p+0, std::numeric_limits<double>::infinity()};
+    const Sphere<double> s{{0x1p-511, 0x1p-511, -0x1.c9ccp+1}, 0x1p-511};
+    const auto h = intersect(accurate, r, s);
+    const auto all = intersect_all(accurate, r, s);
+    ASSERT_TRUE(h);
+    ASSERT_GE(all.size(), 1);
+    EXPECT_EQ(h->t, 0.0);
+    EXPECT_FALSE(std::signbit(h->t));
+    EXPECT_FALSE(std::signbit(all[0].hit.t));
+}
+
 }  // namespace
 }  // namespace rayq::test

@@ -52,13 +52,15 @@ struct End {
 };
 
 // t kept strictly inside the ray's window, where the exact value it stands for lies: a value
-// rounded onto (or, after unscaling, past) an end moves to the neighbouring float inside.
+// rounded onto (or, after unscaling, past) an end moves to the neighbouring float inside. An exact
+// root of zero is +0 whichever stage rounded it (a closest hit once reported −0 where all passages
+// reported +0, from the origin on a sphere of radius 2^-511: sphere libFuzzer harness).
 template <class T>
 inline T inside_window(const Ray<T>& ray, T t)
 {
     if (!(t > ray.tmin)) t = next_up(ray.tmin);
     if (!(t < ray.tmax)) t = next_down(ray.tmax);
-    return t;
+    return t + T(0);  // −0 + 0 = +0 in round-to-nearest; every other t is unchanged
 }
 
 // The same ray with the window (tmin, tmax): the narrowed queries that settle a rounding.
