@@ -214,15 +214,15 @@ private:
     void compress()
     {
         const int n = static_cast<int>(c_.size());
-        // A sum that overflowed left an infinity or NaN, which the largest component carries on.
-        if (n > 0) exact_ = exact_ && std::abs(c_[n - 1]) <= std::numeric_limits<T>::max();
-        if (n < 2) return;
         T* h = c_.data();
+        // A sum that overflowed left an infinity or NaN, which the largest component carries on.
+        if (n > 0) exact_ = exact_ && std::abs(h[n - 1]) <= std::numeric_limits<T>::max();
+        if (n < 2) return;
         int bottom = n - 1;
-        T q = c_[n - 1];
+        T q = h[n - 1];
         for (int i = n - 2; i >= 0; --i) {
-            const T sum = q + c_[i];
-            const T err = c_[i] - (sum - q);  // fast two-sum: |q| >= |c_i| holds here
+            const T sum = q + h[i];
+            const T err = h[i] - (sum - q);  // fast two-sum: |q| >= |c_i| holds here
             if (err != T(0)) {
                 h[bottom--] = sum;
                 q = err;
@@ -238,7 +238,7 @@ private:
             q = sum;
         }
         h[top++] = q;
-        c_.shrink_to(top);
+        c_.shrink_to(static_cast<std::size_t>(top));
         if (top == 1 && c_[0] == T(0)) c_.clear();
         // So many components mean inputs whose exponents span thousands of bits (1e9 beside
         // 2^-1000): products then cost the square of the length, and a cone's discriminant took
