@@ -62,19 +62,21 @@ public:
         if (!a.finite_ || !b.finite_) return not_finite();
         if (a.sign_ == 0) return b;
         if (b.sign_ == 0) return a;
-        // Both magnitudes on the finer grid of the two, then added or subtracted as integers.
-        const long e = std::min(a.exponent_, b.exponent_);
-        const Limbs x = shifted_left(a.limbs_, a.exponent_ - e), y = shifted_left(b.limbs_, b.exponent_ - e);
+        // The coarser operand moved onto the finer one's grid (its only copy), then the other
+        // added to or subtracted from it in place, as integers.
+        const Dyadic& coarse = a.exponent_ >= b.exponent_ ? a : b;
+        const Dyadic& fine = a.exponent_ >= b.exponent_ ? b : a;
         Dyadic r;
-        r.exponent_ = e;
-        if (a.sign_ == b.sign_) {
-            r.limbs_ = added(x, y);
-            r.sign_ = a.sign_;
+        r.limbs_ = shifted_left(coarse.limbs_, coarse.exponent_ - fine.exponent_, fine.limbs_.size() + 1);
+        r.exponent_ = fine.exponent_;
+        if (coarse.sign_ == fine.sign_) {
+            add_in_place(r.limbs_, fine.limbs_);
+            r.sign_ = coarse.sign_;
         } else {
-            const int c = compared(x, y);
+            const int c = compared(r.limbs_, fine.limbs_);
             if (c == 0) return Dyadic{};
-            r.limbs_ = c > 0 ? subtracted(x, y) : subtracted(y, x);
-            r.sign_ = c > 0 ? a.sign_ : b.sign_;
+            subtract_in_place(r.limbs_, fine.limbs_, c > 0);
+            r.sign_ = c > 0 ? coarse.sign_ : fine.sign_;
         }
         r.normalize();
         return r;
@@ -117,12 +119,14 @@ private:
         r.finite_ = false;
         return r;
     }
-    static Limbs shifted_left(const Limbs& x, long bits)
+    // x·2^bits, with room for at least `size` limbs.
+    static Limbs shifted_left(const Limbs& x, long bits, std::size_t size)
     {
         const std::size_t whole = static_cast<std::size_t>(bits / 32);
         const int part = static_cast<int>(bits % 32);
-        Limbs r(whole, 0);
-        r.reserve(whole + x.size() + 1);
+        Limbs r;
+        r.reserve(std::max(whole + x.size() + 1, size));
+        r.assign(whole, 0);
         std::uint32_t carry = 0;
         for (std::uint32_t limb : x) {
             r.push_back(part == 0 ? limb : (limb << part) | carry);
@@ -131,38 +135,41 @@ private:
         if (carry != 0) r.push_back(carry);
         return r;
     }
+    // Magnitudes without leading zero limbs compare by length first.
     static int compared(const Limbs& x, const Limbs& y)
     {
-        if (x.size() != y.size()) return x.size() > y.size() ? 1 : -1;
-        for (std::size_t i = x.size(); i-- > 0;)
+        std::size_t nx = x.size(), ny = y.size();
+        while (nx > 0 && x[nx - 1] == 0) --nx;
+        while (ny > 0 && y[ny - 1] == 0) --ny;
+        if (nx != ny) return nx > ny ? 1 : -1;
+        for (std::size_t i = nx; i-- > 0;)
             if (x[i] != y[i]) return x[i] > y[i] ? 1 : -1;
         return 0;
     }
-    static Limbs added(const Limbs& x, const Limbs& y)
+    static void add_in_place(Limbs& x, const Limbs& y)  // x += y
     {
-        const Limbs& big = x.size() >= y.size() ? x : y;
-        const Limbs& small = x.size() >= y.size() ? y : x;
-        Limbs r(big.size() + 1, 0);
+        if (x.size() < y.size()) x.resize(y.size(), 0);
+        x.push_back(0);
         std::uint64_t carry = 0;
-        for (std::size_t i = 0; i < big.size(); ++i) {
-            const std::uint64_t t = std::uint64_t(big[i]) + (i < small.size() ? small[i] : 0u) + carry;
-            r[i] = static_cast<std::uint32_t>(t);
+        for (std::size_t i = 0; i < x.size(); ++i) {
+            const std::uint64_t t = std::uint64_t(x[i]) + (i < y.size() ? y[i] : 0u) + carry;
+            x[i] = static_cast<std::uint32_t>(t);
             carry = t >> 32;
+            if (carry == 0 && i >= y.size()) break;
         }
-        r[big.size()] = static_cast<std::uint32_t>(carry);
-        return r;
     }
-    static Limbs subtracted(const Limbs& x, const Limbs& y)  // x − y for x > y
+    // x −= y when x_larger, else x = y − x (the larger minus the smaller, either way).
+    static void subtract_in_place(Limbs& x, const Limbs& y, bool x_larger)
     {
-        Limbs r(x.size(), 0);
+        if (x.size() < y.size()) x.resize(y.size(), 0);
         std::int64_t borrow = 0;
         for (std::size_t i = 0; i < x.size(); ++i) {
-            std::int64_t t = std::int64_t(x[i]) - (i < y.size() ? std::int64_t(y[i]) : 0) - borrow;
+            const std::int64_t xi = x[i], yi = i < y.size() ? std::int64_t(y[i]) : 0;
+            std::int64_t t = (x_larger ? xi - yi : yi - xi) - borrow;
             borrow = t < 0 ? 1 : 0;
             if (t < 0) t += std::int64_t(1) << 32;
-            r[i] = static_cast<std::uint32_t>(t);
+            x[i] = static_cast<std::uint32_t>(t);
         }
-        return r;
     }
     // An odd integer (trailing zero bits moved into the exponent) with a nonzero top limb: keeps
     // sums of far-apart terms as short as their span.
