@@ -131,12 +131,7 @@ TEST(MagnitudeFilter, ClosestHitAndAllCrossingsAgreeInEveryField)
 {
     const Ray<float> r{{0.0f, 0x1p-63f, -0x1.a24e54p+44f}, {0.0f, 0.0f, 1.0f}};
     const Sphere<float> s{{-0x1.490764p-43f, 0x1p-63f, -0x1.509p-1f}, 0x1.a24e54p+43f};
-    const auto hit = intersect(accurate, r, s);
-    const auto all = intersect_all(accurate, r, s);
-    ASSERT_TRUE(hit);
-    ASSERT_GE(all.size(), 1);
-    EXPECT_EQ(all[0].hit.t, hit->t);
-    EXPECT_EQ(all[0].hit.t_error, hit->t_error);
+    expect_first_passage_is_closest_hit(r, s);
 }
 
 // The flat primitives' quick lane against the double exact path on the same (widened) inputs,

@@ -72,4 +72,21 @@ std::optional<Hit<scalar_t<Prim>>> checked_intersect(Policy p, const Ray<scalar_
     return h;
 }
 
+// The accurate closest hit and intersect_all's first passage: both present and the same t and
+// t_error (the fuzz invariant intersect_all.first_is_intersect). Returns all passages.
+template <class Prim>
+Passages<scalar_t<Prim>> expect_first_passage_is_closest_hit(const Ray<scalar_t<Prim>>& r, const Prim& prim)
+{
+    const auto hit = intersect(accurate, r, prim);
+    const auto all = intersect_all(accurate, r, prim);
+    EXPECT_TRUE(hit);
+    EXPECT_GE(all.size(), 1);
+    if (hit && all.size() >= 1) {
+        EXPECT_EQ(all[0].hit.t, hit->t);
+        EXPECT_EQ(std::signbit(all[0].hit.t), std::signbit(hit->t));
+        EXPECT_EQ(all[0].hit.t_error, hit->t_error);
+    }
+    return all;
+}
+
 }  // namespace rayq::test
