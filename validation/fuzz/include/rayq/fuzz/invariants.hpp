@@ -201,26 +201,40 @@ Reference reference_root(const Prim& prim, const test::Q3& o, const test::Q3& d,
     return r;
 }
 
-// Whether binary128 holds the axis p1 − p0 of a cylinder or cone exactly. The reference's error
-// estimate covers rounding in space (|∇F| times the positions' rounding), not a rounded axis: a
-// cylinder from (−2^-402, −2^226, 2^197) to (0.75, 0.75, 0.75) got a reference root 0.92 away from
-// CGAL's (axial libFuzzer harness, once accurate ran on coordinates beyond 1e9).
+// Whether the binary128 reference can resolve a cylinder or cone near the root t. Its error
+// estimate covers rounding in space (|∇F| times the positions' rounding) to first order, which
+// fails when
+//  * the axis p1 − p0 is not exact in binary128: a cylinder from (−2^-402, −2^226, 2^197) to
+//    (0.75, 0.75, 0.75) got a reference root 0.92 from CGAL's;
+//  * the radius is below 2^-80 of the offsets whose cross product with the axis gives the
+//    distance from it (|q|, q = o + t·d − p0): that cross product then cancels beyond binary128's
+//    113 bits, and its rounding, squared, outweighs F (a cylinder of radius 2^-239 seen from
+//    2^-4 away got a reference root twice CGAL's).
+// Both found by the axial libFuzzer harness once accurate ran everywhere; accurate matched CGAL.
 inline bool exact_in_quad(quad a, quad b)  // a − b (TwoSum's error term is zero)
 {
     const quad s = a - b, bv = s - a;
     return (a - (s - bv)) + (-b - bv) == 0;
 }
 template <class Prim>
-bool reference_axis_exact(const Prim&) { return true; }
+bool reference_resolves(const Prim&, const test::Q3&, const test::Q3&, quad) { return true; }
 template <class T>
-bool reference_axis_exact(const Cylinder<T>& c)
+bool axial_reference_resolves(const Vec3<T>& p0, const Vec3<T>& p1, T radius, const test::Q3& o, const test::Q3& d, quad t)
 {
-    return exact_in_quad(c.p1.x, c.p0.x) && exact_in_quad(c.p1.y, c.p0.y) && exact_in_quad(c.p1.z, c.p0.z);
+    if (!(exact_in_quad(p1.x, p0.x) && exact_in_quad(p1.y, p0.y) && exact_in_quad(p1.z, p0.z))) return false;
+    const test::Q3 q = o - test::q3(p0) + t * d;
+    const quad reach = test::qabs(q.x) + test::qabs(q.y) + test::qabs(q.z);
+    return test::qabs(quad(radius)) >= reach * quad(0x1p-80);
 }
 template <class T>
-bool reference_axis_exact(const Cone<T>& c)
+bool reference_resolves(const Cylinder<T>& c, const test::Q3& o, const test::Q3& d, quad t)
 {
-    return exact_in_quad(c.p1.x, c.p0.x) && exact_in_quad(c.p1.y, c.p0.y) && exact_in_quad(c.p1.z, c.p0.z);
+    return axial_reference_resolves(c.p0, c.p1, c.radius, o, d, t);
+}
+template <class T>
+bool reference_resolves(const Cone<T>& c, const test::Q3& o, const test::Q3& d, quad t)
+{
+    return axial_reference_resolves(c.p0, c.p1, std::max(std::abs(c.r0), std::abs(c.r1)), o, d, t);
 }
 
 // t_error contains the exact root: a violation only when the reference is certain of a root
@@ -236,7 +250,7 @@ void check_t_error(const Ray<T>& ray, const Prim& prim, const Hit<T>& h, const c
             if (std::isfinite(v)) scale = std::max(scale, test::qabs(quad(v)));
     });
     const Reference ref = reference_root(prim, o, d, quad(h.t), h.part, scale);
-    if (!ref.certain || !reference_axis_exact(prim)) {
+    if (!ref.certain || !reference_resolves(prim, o, d, quad(h.t))) {
         ++out.reference_uncertain;
         return;
     }
