@@ -39,8 +39,8 @@ TEST(Dyadic, SumsAndProductsOfDyadicInputsMatchIntegers)
         int s[5];
         double x[5];
         for (int j = 0; j < 5; ++j) k[j] = mantissa(rng), s[j] = shift(rng), x[j] = std::ldexp(double(k[j]), -s[j]);
-        const auto as_int = [&](int j, int scale) { return Int(k[j]) << (scale - s[j]); };
-        const Int exact = as_int(0, 20) * as_int(1, 20) - as_int(2, 20) * as_int(3, 20) + (as_int(4, 20) << 20);
+        const auto as_int = [&](int j, int scale) { return Int(k[j]) * (Int(1) << (scale - s[j])); };  // no shift of a negative (UB in C++17)
+        const Int exact = as_int(0, 20) * as_int(1, 20) - as_int(2, 20) * as_int(3, 20) + as_int(4, 20) * (Int(1) << 20);
         const Dyadic v = Dyadic(x[0]) * Dyadic(x[1]) - Dyadic(x[2]) * Dyadic(x[3]) + Dyadic(x[4]);
         ASSERT_EQ(v.sign(), sign(exact)) << i;
         // The value itself: the integer's top bits and exponent.
