@@ -125,5 +125,32 @@ TEST(Dyadic, AdaptiveSignTurnsToDyadicWhenExpansionsLeaveTheRange)
     EXPECT_EQ(negative, -1);
 }
 
+// a·t² + b·t + c with fixed double coefficients, as a primitive's residual along a ray.
+struct FixedQuadratic {
+    double a, b, c;
+    template <class N>
+    Residual<N> operator()(N) const { return {N{c}, N{b}, N{a}}; }
+    template <class N>
+    Residual<N> at(N t) const { return {(N{a} * t + N{b}) * t + N{c}, N{2 * a} * t + N{b}, N{a}}; }
+};
+
+TEST(Dyadic, ExactGuessHoldsWhereTheDiscriminantUnderflows)
+{
+    // 2^-600·(t² + t − 2^-470): the discriminant 2^-1200·(1 + 2^-468) underflows to 0 in double and
+    // double-word, whose guesses are then −1/2 and 2^-469, each a factor 2 off. The roots are
+    // −1 − 2^-470 + … and 2^-470 − 2^-940 + …, which round to −1 and 2^-470.
+    const ExactQuadratic<double, FixedQuadratic> q(FixedQuadratic{0x1p-600, 0x1p-600, -0x1p-1070});
+    ASSERT_EQ(q.sign_disc(), 1);
+    EXPECT_EQ(q.guess(1), 0x1p-469);  // what the search used to start from
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    EXPECT_LE(std::abs(q.exact_guess(0, nan) + 1), 0x1p-52);
+    EXPECT_LE(std::abs(q.exact_guess(1, nan) - 0x1p-470), 0x1p-522);
+    EXPECT_EQ(q.round(0), -1.0);
+    EXPECT_EQ(q.round(1), 0x1p-470);
+    // A root beyond double's range starts the search from the largest double, not from infinity.
+    const ExactQuadratic<double, FixedQuadratic> far(FixedQuadratic{0x1p-600, -0x1p600, 0x1p-600});
+    EXPECT_EQ(far.exact_guess(1, nan), std::numeric_limits<double>::max());
+}
+
 }  // namespace
 }  // namespace rayq::detail
