@@ -152,7 +152,8 @@ void expect_flat_lane_agrees(const char* what, const Ray<float>& r, const FloatP
     const Ray<double> wide_ray{widened<double>(r.origin), widened<double>(r.direction), double(r.tmin), double(r.tmax)};
     const Crossings<double> reference = crossings(accurate, wide_ray, wide);
     const Crossings<float> full = crossings(accurate, r, prim);
-    const std::optional<Crossings<float>> lane = detail::quick_flat_crossing(r, quick);
+    const std::optional<Crossings<float>> lane =
+        detail::quick_flat_crossing(r, quick, detail::PartCoefficients<FloatPrim>{&prim, &r, Part::surface});
     answered += lane.has_value();
     for (const Crossings<float>* c : {&full, lane ? &*lane : nullptr}) {
         if (!c) continue;
@@ -205,9 +206,94 @@ TEST(MagnitudeFilter, FlatQuickLaneAgreesWithTheDoublePath)
         expect_flat_lane_agrees("disk", r, disk, Disk<double>{widened<double>(c), widened<double>(n), double(radius)},
                                 [&] { return detail::quick_disk(r, disk); }, answered, i);
         expect_flat_lane_agrees("triangle", r, tri, Triangle<double>{widened<double>(tri.a), widened<double>(tri.b), widened<double>(tri.c)},
-                                [&] { return detail::quick_planar(r, frame(tri.a, tri.b, tri.c), true); }, answered, i);
+                                [&] { return detail::quick_planar(r, frame(tri.a, tri.b, tri.c), true, true); }, answered, i);
         expect_flat_lane_agrees("parallelogram", r, quad, Parallelogram<double>{widened<double>(c), widened<double>(e0), widened<double>(e1)},
-                                [&] { return detail::quick_planar(r, quad_frame, false); }, answered, i);
+                                [&] { return detail::quick_planar(r, quad_frame, false, true); }, answered, i);
+    }
+    EXPECT_GT(answered, rays * 90 / 100);
+}
+
+// The flat lane on double inputs (a double-word Newton step for t) against the double exact path,
+// reached by the same inputs with every length scaled by 2^200: beyond the static filter's range,
+// where the lane declines. Scaling lengths scales the exact root by 2^200 and commutes with
+// rounding, so the answers must be equal bit for bit.
+template <class Prim>
+Prim scaled_lengths(const Prim& p, double s);
+template <>
+Plane<double> scaled_lengths(const Plane<double>& p, double s) { return {s * p.point, p.normal}; }
+template <>
+Disk<double> scaled_lengths(const Disk<double>& p, double s) { return {s * p.center, p.normal, s * p.radius}; }
+template <>
+Triangle<double> scaled_lengths(const Triangle<double>& p, double s) { return {s * p.a, s * p.b, s * p.c}; }
+template <>
+Parallelogram<double> scaled_lengths(const Parallelogram<double>& p, double s) { return {s * p.corner, s * p.edge0, s * p.edge1}; }
+
+// The lane's QuickFlat for each flat primitive, as its accurate crossings() builds it.
+detail::QuickFlat quick_of(const Ray<double>& r, const Plane<double>& p)
+{
+    const auto plane = detail::quick_plane(r, p);
+    return {plane.f, plane.df, 1, detail::all_within_static_range(p.point, p.normal)};
+}
+detail::QuickFlat quick_of(const Ray<double>& r, const Disk<double>& d) { return detail::quick_disk(r, d); }
+detail::QuickFlat quick_of(const Ray<double>& r, const Triangle<double>& t)
+{
+    const auto frame = [&](auto zero) {
+        using N = decltype(zero);
+        const Vec3<N> a = detail::lift<N>(t.a);
+        return detail::PlanarFrame<N>{a, detail::lift<N>(t.b) - a, detail::lift<N>(t.c) - a};
+    };
+    return detail::quick_planar(r, frame, true, detail::all_within_static_range(t.a, t.b, t.c));
+}
+detail::QuickFlat quick_of(const Ray<double>& r, const Parallelogram<double>& p)
+{
+    const auto frame = [&](auto zero) {
+        using N = decltype(zero);
+        return detail::PlanarFrame<N>{detail::lift<N>(p.corner), detail::lift<N>(p.edge0), detail::lift<N>(p.edge1)};
+    };
+    return detail::quick_planar(r, frame, false, detail::all_within_static_range(p.corner, p.edge0, p.edge1));
+}
+
+template <class Prim>
+void expect_double_lane_agrees(const char* what, const Ray<double>& r, const Prim& prim, int& answered, int i)
+{
+    constexpr double s = 0x1p200;
+    const Ray<double> far{s * r.origin, r.direction, s * r.tmin, s * r.tmax};
+    const Crossings<double> reference = crossings(accurate, far, scaled_lengths(prim, s));
+    ASSERT_TRUE(!detail::quick_flat_crossing(far, [&] { return quick_of(far, scaled_lengths(prim, s)); },
+                                             detail::PartCoefficients<Prim>{&prim, &far, Part::surface}))
+        << "the reference took the lane";
+    const std::optional<Crossings<double>> lane =
+        detail::quick_flat_crossing(r, [&] { return quick_of(r, prim); }, detail::PartCoefficients<Prim>{&prim, &r, Part::surface});
+    answered += lane.has_value();
+    const Crossings<double> full = crossings(accurate, r, prim);
+    for (const Crossings<double>* c : {&full, lane ? &*lane : nullptr}) {
+        if (!c) continue;
+        ASSERT_EQ(c->count, reference.count) << what << ' ' << i << (c == &full ? " (accurate)" : " (quick lane)");
+        if (reference.count == 0) continue;
+        EXPECT_EQ(c->item[0].t, reference.item[0].t / s) << what << ' ' << i;
+        EXPECT_EQ(c->item[0].entering, reference.item[0].entering) << what << ' ' << i;
+    }
+}
+
+TEST(MagnitudeFilter, FlatQuickLaneInDoubleAgreesWithTheExactPath)
+{
+    std::mt19937_64 rng(0xD0B1E);
+    std::uniform_real_distribution<double> u(-1, 1), lg(-3, 3);
+    int rays = 0, answered = 0;
+    for (int i = 0; i < 6000; ++i) {
+        const double scale = i % 4 == 3 ? std::ldexp(1.0, int(40 * u(rng))) : std::pow(10.0, lg(rng));
+        const auto point = [&](double k) { return Vec3<double>{k * u(rng), k * u(rng), k * u(rng)}; };
+        const Vec3<double> c = point(scale), n = point(1 + std::abs(u(rng))), e0 = point(scale), e1 = point(scale);
+        const double radius = scale * (0.1 + std::abs(u(rng)));
+        Ray<double> r{point(4 * scale), {}};
+        r.direction = c + point(1.2 * scale) - r.origin;
+        if (i % 8 == 5) r.direction = cross(n, point(1)) + Vec3<double>{0x1p-40 * u(rng), 0.0, 0.0};  // nearly in the plane
+        if (i % 4 == 1) r.tmin = std::abs(u(rng)), r.tmax = 1 + std::abs(u(rng));
+        rays += 4;
+        expect_double_lane_agrees("plane", r, Plane<double>{c, n}, answered, i);
+        expect_double_lane_agrees("disk", r, Disk<double>{c, n, radius}, answered, i);
+        expect_double_lane_agrees("triangle", r, Triangle<double>{c, c + e0, c + e1}, answered, i);
+        expect_double_lane_agrees("parallelogram", r, Parallelogram<double>{c, e0, e1}, answered, i);
     }
     EXPECT_GT(answered, rays * 90 / 100);
 }

@@ -71,6 +71,7 @@ template <class T>
 inline QuickFlat quick_disk(const Ray<T>& ray, const Disk<T>& disk)
 {
     using M = Magnitude<double>;
+    if (!all_within_static_range(disk.center, disk.normal, disk.radius)) return {{}, {}, 0, false};
     const Residual<M> plane = quick_plane(ray, disk);
     const Vec3<M> q = lift<M>(ray.origin) - lift<M>(disk.center), d = lift<M>(ray.direction);
     const Vec3<M> w = plane.df * q - plane.f * d;

@@ -72,7 +72,7 @@ inline Crossings<T> crossings(accurate_policy, const Ray<T>& ray, const Parallel
     // det = e0·(d × e1) = −d·n, so its sign is minus the plane's slope along the ray.
     return detail::exact_flat_crossing(
         ray, p, [&](const auto& plane) { return detail::exact_planar_inside(ray, edges, -plane.sign_b(), false); },
-        [&] { return detail::quick_planar(ray, edges, false); });
+        [&] { return detail::quick_planar(ray, edges, false, detail::all_within_static_range(p.corner, p.edge0, p.edge1)); });
 }
 
 template <class T>

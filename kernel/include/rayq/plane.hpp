@@ -57,7 +57,7 @@ inline Crossings<T> crossings(accurate_policy, const Ray<T>& ray, const Plane<T>
     return detail::exact_flat_crossing(
         ray, p, [](const auto&) { return true; }, [&] {
             const auto plane = detail::quick_plane(ray, p);
-            return detail::QuickFlat{plane.f, plane.df, 1};
+            return detail::QuickFlat{plane.f, plane.df, 1, detail::all_within_static_range(p.point, p.normal)};
         });
 }
 

@@ -71,7 +71,7 @@ inline Crossings<T> crossings(accurate_policy, const Ray<T>& ray, const Triangle
     };
     return detail::exact_flat_crossing(
         ray, tri, [&](const auto& plane) { return detail::exact_planar_inside(ray, edges, -plane.sign_b(), true); },
-        [&] { return detail::quick_planar(ray, edges, true); });
+        [&] { return detail::quick_planar(ray, edges, true, detail::all_within_static_range(tri.a, tri.b, tri.c)); });
 }
 
 template <class T>

@@ -184,6 +184,46 @@ struct ScaledDouble {
     }
 };
 
+// Root `which` of the quadratic whose residual along the ray `coef.at` gives (sign_a: a's sign, 0
+// when linear), rounded to nearest from a guess t by one Newton step t + δ, δ = −F(t)/F'(t), with
+// F, F' and a evaluated in wide_t arithmetic at t; none when the step cannot certify it.
+// With x = 4·|a|·|F|/F'² <= 1/2 the nearest root lies within |δ|·x/2 of t + δ (the quadratic's
+// root 2F/(F' ± √(F'² − 4aF)) against its linearization), plus the bounds' effect on δ. If no
+// rounding boundary of T lies within that, fl(t + δ) is correctly rounded.
+template <class T, class Coef>
+inline std::optional<T> newton_rounded(const Coef& coef, int sign_a, int which, T t)
+{
+    if (!std::isfinite(t)) return std::nullopt;
+    const Residual<wide_t<T>> r = coef.at(wide_t<T>{t});
+    const T u = unit_roundoff<T>;
+    const Estimate<T> f = estimate(r.f), df = estimate(r.df), a = estimate(r.a);
+    const T fv = f.v, dv = df.v, f_err = f.e, d_err = df.e;
+    const T d_min = (std::abs(dv) - d_err) * (T(1) - T(2) * u);
+    if (!(d_min > T(0))) return std::nullopt;
+    // The nearest root is the requested one: F' has the sign of an entry (−sign a) at the smaller root.
+    if (sign_a != 0 && (dv > T(0) ? 1 : -1) * sign_a != (which == 0 ? -1 : 1)) return std::nullopt;
+    const T f_max = grow(std::abs(fv) + f_err), a_max = grow(std::abs(a.v) + a.e);
+    // Quotients before products: grow() covers one underflow's absolute error, which a later
+    // division by a small F' would magnify (a float sphere near 2^-60 was rounded 1 ulp off).
+    const T delta_max = grow(f_max / d_min);
+    const T x = grow(grow(T(4) * a_max * delta_max) / d_min);
+    if (!(x <= T(0.5))) return std::nullopt;
+    const T delta = -fv / dv;
+    // |δ − fv/dv| over the bounds of F and F': f_err/D + |fv/dv|·d_err/D.
+    const T spread = grow(grow(delta_max * x / T(2)) + grow(grow(f_err / d_min) + grow(std::abs(delta) * grow(d_err / d_min))) +
+                          u * std::abs(delta));
+    const T rounded = t + delta;
+    if (!std::isfinite(rounded)) return std::nullopt;
+    // Offset of t + δ from `rounded`, exactly up to one rounding: (t − rounded) is a two-sum.
+    const Pair<T> gap = two_sum(t, -rounded);
+    const T offset = gap.hi + (gap.lo + delta);
+    const T slack = grow(spread + T(2) * u * (std::abs(gap.lo) + std::abs(delta) + std::abs(offset)));
+    const T up = (next_up(rounded) - rounded) / T(2);
+    const T down = (rounded - next_down(rounded)) / T(2);
+    if (offset + slack < up && offset - slack > -down) return rounded;
+    return std::nullopt;
+}
+
 // The quadratic a·t² + b·t + c along the ray, whose coefficients `coef` computes in any number
 // type (a primitive's residual at t = 0). Signs of a and of the discriminant are decided once.
 template <class T, class Coef>
@@ -333,42 +373,8 @@ public:
         return rounded_between_midpoints<T>((*roots)[which]);
     }
 
-    // One Newton step t + δ, δ = −F(t)/F'(t), with F, F' and a evaluated in wide_t arithmetic
-    // at t. With x = 4·|a|·|F|/F'² <= 1/2 the nearest root lies within |δ|·x/2 of t + δ (the
-    // quadratic's root 2F/(F' ± √(F'² − 4aF)) against its linearization), plus the bounds'
-    // effect on δ. If no rounding boundary of T lies within that, fl(t + δ) is correctly rounded.
-    std::optional<T> newton_round(int which, T t) const
-    {
-        if (!std::isfinite(t)) return std::nullopt;
-        const Residual<wide_t<T>> r = coef_.at(wide_t<T>{t});
-        const T u = unit_roundoff<T>;
-        const Estimate<T> f = estimate(r.f), df = estimate(r.df), a = estimate(r.a);
-        const T fv = f.v, dv = df.v, f_err = f.e, d_err = df.e;
-        const T d_min = (std::abs(dv) - d_err) * (T(1) - T(2) * u);
-        if (!(d_min > T(0))) return std::nullopt;
-        // The nearest root is the requested one: F' has the sign of an entry (−sign a) at the smaller root.
-        if (sign_a_ != 0 && (dv > T(0) ? 1 : -1) * sign_a_ != (which == 0 ? -1 : 1)) return std::nullopt;
-        const T f_max = grow(std::abs(fv) + f_err), a_max = grow(std::abs(a.v) + a.e);
-        // Quotients before products: grow() covers one underflow's absolute error, which a later
-        // division by a small F' would magnify (a float sphere near 2^-60 was rounded 1 ulp off).
-        const T delta_max = grow(f_max / d_min);
-        const T x = grow(grow(T(4) * a_max * delta_max) / d_min);
-        if (!(x <= T(0.5))) return std::nullopt;
-        const T delta = -fv / dv;
-        // |δ − fv/dv| over the bounds of F and F': f_err/D + |fv/dv|·d_err/D.
-        const T spread = grow(grow(delta_max * x / T(2)) + grow(grow(f_err / d_min) + grow(std::abs(delta) * grow(d_err / d_min))) +
-                              u * std::abs(delta));
-        const T rounded = t + delta;
-        if (!std::isfinite(rounded)) return std::nullopt;
-        // Offset of t + δ from `rounded`, exactly up to one rounding: (t − rounded) is a two-sum.
-        const Pair<T> gap = two_sum(t, -rounded);
-        const T offset = gap.hi + (gap.lo + delta);
-        const T slack = grow(spread + T(2) * u * (std::abs(gap.lo) + std::abs(delta) + std::abs(offset)));
-        const T up = (next_up(rounded) - rounded) / T(2);
-        const T down = (rounded - next_down(rounded)) / T(2);
-        if (offset + slack < up && offset - slack > -down) return rounded;
-        return std::nullopt;
-    }
+    // One certified Newton step from t (newton_rounded, above).
+    std::optional<T> newton_round(int which, T t) const { return newton_rounded(coef_, sign_a_, which, t); }
 
     // Exact: gallop from `guess` in ulps until the root is bracketed, bisect, then settle the
     // last ulp against the midpoint.

@@ -709,7 +709,27 @@ namespace rayq::detail {
 struct QuickFlat {
     Magnitude<double> f, df;
     int inside;
+    bool in_range = true;  // the primitive's inputs are within the filter's range (within_static_range)
 };
+
+// Whether the static filter (magnitude.hpp) may take these inputs: each 0 or within 2^±64, so that
+// products of up to six of them stay in double's normal range. Float inputs, in double, always may.
+template <class T>
+RAYQ_INLINE bool within_static_range(T x)
+{
+    if constexpr (std::is_same_v<T, float>) return true;
+    else return x == T(0) || within_exact_range(std::abs(x));
+}
+template <class T>
+RAYQ_INLINE bool within_static_range(const Vec3<T>& v)
+{
+    return within_static_range(v.x) && within_static_range(v.y) && within_static_range(v.z);
+}
+template <class... X>
+RAYQ_INLINE bool all_within_static_range(const X&... x)
+{
+    return (within_static_range(x) && ...);
+}
 
 // A flat primitive's plane coefficients for QuickFlat. t = 0 enters as a constant, not as a float
 // factor, so the degrees count float factors only: two in a plane's or disk's coefficients, three
@@ -720,24 +740,30 @@ inline Residual<Magnitude<double>> quick_plane(const Ray<scalar_t<Prim>>& ray, c
     return PartCoefficients<Prim>{&prim, &ray, Part::surface}(Magnitude<double>{0.0, 0.0, 0, 0, 0});
 }
 
-// The common case of a float flat primitive, settled by the static filter alone, as
+// The common case of a flat primitive, settled by the static filter alone, as
 // quick_curved_crossings settles a curved one: the plane's slope certainly nonzero, its root −f/df
-// rounded from a certified interval (quotient, rounded_between_midpoints) on a definite side of
-// both window ends, and the trim certain. None when anything is uncertain: exact_flat_crossing
-// then decides, and since the correctly rounded root and the exact trim are unique, both give the
-// same answer. `quick()` computes the QuickFlat; everything here is inlined (flatten), so the
-// filter's counts fold to constants.
-template <class Quick>
-RAYQ_FLATTEN inline std::optional<Crossings<float>> quick_flat_crossing(const Ray<float>& ray, const Quick& quick)
+// correctly rounded on a definite side of both window ends, and the trim certain. None when
+// anything is uncertain: exact_flat_crossing then decides, and since the correctly rounded root
+// and the exact trim are unique, both give the same answer. `quick()` computes the QuickFlat;
+// everything here is inlined (flatten), so the filter's counts fold to constants.
+// The root: for float, from the filter's certified interval in double (quotient,
+// rounded_between_midpoints), 2^29 times tighter than float's spacing; for double, whose own
+// interval spans ulps, by one certified double-word Newton step from −f/df on the plane's residual
+// `coef` (newton_rounded), exact for a linear F up to the double-word bounds.
+template <class T, class Quick, class Coef>
+RAYQ_FLATTEN inline std::optional<Crossings<T>> quick_flat_crossing(const Ray<T>& ray, const Quick& quick, const Coef& coef)
 {
+    if (!all_within_static_range(ray.origin, ray.direction)) return std::nullopt;
     const QuickFlat plane = quick();
-    if (plane.f.d > 6 || plane.df.d > 6) return std::nullopt;
+    if (!plane.in_range || plane.f.d > 6 || plane.df.d > 6) return std::nullopt;
     const int slope = certain_sign(plane.df);
     if (slope == 0) return std::nullopt;
-    const std::optional<float> t = rounded_between_midpoints<float>(quotient(-bounded(plane.f), bounded(plane.df)));
+    std::optional<T> t;
+    if constexpr (std::is_same_v<T, float>) t = rounded_between_midpoints<float>(quotient(-bounded(plane.f), bounded(plane.df)));
+    else t = newton_rounded<T>(coef, 0, 0, -plane.f.v / plane.df.v);
     // A float t ≠ x on one side of x puts the exact root on that side: it lies beyond t's midpoint.
     if (!t || *t == ray.tmin || *t == ray.tmax) return std::nullopt;
-    Crossings<float> out;
+    Crossings<T> out;
     if (!(ray.tmin < *t && *t < ray.tmax)) return out;
     if (plane.inside == 0) return std::nullopt;
     if (plane.inside > 0) out.add(*t, Part::surface, slope < 0, true);  // F decreasing along the ray: entering
@@ -745,17 +771,17 @@ RAYQ_FLATTEN inline std::optional<Crossings<float>> quick_flat_crossing(const Ra
 }
 
 // The crossing of a flat primitive's plane, if the exact inside test `inside(plane)` accepts it
-// (it receives the plane's exact quadratic, whose root is the crossing). Float inputs try the
-// quick lane first, on the QuickFlat that `quick()` computes.
+// (it receives the plane's exact quadratic, whose root is the crossing). The quick lane comes
+// first, on the QuickFlat that `quick()` computes.
 template <class Prim, class Inside, class Quick>
 inline Crossings<scalar_t<Prim>> exact_flat_crossing(const Ray<scalar_t<Prim>>& ray, const Prim& prim, const Inside& inside,
                                                      const Quick& quick)
 {
     using T = scalar_t<Prim>;
     using Coef = PartCoefficients<Prim>;
-    if constexpr (std::is_same_v<T, float>)
-        if (const auto settled = quick_flat_crossing(ray, quick)) return *settled;
-    const ExactQuadratic<T, Coef> plane(Coef{&prim, &ray, Part::surface});
+    const Coef coef{&prim, &ray, Part::surface};
+    if (const auto settled = quick_flat_crossing(ray, quick, coef)) return *settled;
+    const ExactQuadratic<T, Coef> plane(coef);
     Crossings<T> out;
     if (plane.sign_b() == 0) return out;  // parallel to the plane, or in it
     const T t = plane.round(0);
@@ -806,15 +832,16 @@ inline PlanarNumerators<N> planar_numerators(const Ray<T>& ray, const Edges& edg
 // t_num/det is the plane's root (Cramer's rule), so F = t_num − det·t, and inside is the test
 // above with the static filter's certain signs.
 template <class T, class Edges>
-inline QuickFlat quick_planar(const Ray<T>& ray, const Edges& edges, bool triangle)
+inline QuickFlat quick_planar(const Ray<T>& ray, const Edges& edges, bool triangle, bool in_range)
 {
+    if (!in_range) return {{}, {}, 0, false};
     const PlanarNumerators<Magnitude<double>> m = planar_numerators<true>(ray, edges, Magnitude<double>{});
     const int sign_det = certain_sign(m.det);
     const int alpha = sign_det * certain_sign(m.alpha), beta = sign_det * certain_sign(m.beta);
     const int upper0 = sign_det * certain_sign(triangle ? m.det - m.alpha - m.beta : m.det - m.alpha);
     const int upper1 = triangle ? 1 : sign_det * certain_sign(m.det - m.beta);
     const bool outside = alpha < 0 || beta < 0 || upper0 < 0 || upper1 < 0;
-    return {m.t, -m.det, outside ? -1 : (alpha > 0 && beta > 0 && upper0 > 0 && upper1 > 0 ? 1 : 0)};
+    return {m.t, -m.det, outside ? -1 : (alpha > 0 && beta > 0 && upper0 > 0 && upper1 > 0 ? 1 : 0), true};
 }
 
 template <class T, class Edges>
