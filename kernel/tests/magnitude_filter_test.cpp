@@ -74,7 +74,8 @@ TEST(MagnitudeFilter, BoundHoldsOnSphereCoefficientsAndDiscriminant)
 // The quick lane, where it answers, gives the full exact path's crossings (count, t bit for bit,
 // part, direction, certification), for the closest crossing and for both; and it answers on nearly
 // every generic ray.
-TEST(MagnitudeFilter, QuickLaneAgreesWithTheExactPath)
+template <class T>
+void expect_sphere_lane_agrees()
 {
     std::mt19937_64 rng(0x5E7);
     std::uniform_real_distribution<double> u(-1, 1), lg(-3, 3);
@@ -83,13 +84,13 @@ TEST(MagnitudeFilter, QuickLaneAgreesWithTheExactPath)
         // Mostly ordinary scales; every fourth query far from 1 (2^±60), where the quick lane
         // still answers as long as the coefficients stay within 2^±400.
         const double scale = i % 4 == 3 ? std::ldexp(1.0, int(60 * u(rng))) : std::pow(10.0, lg(rng));
-        const Sphere<float> s{{float(scale * u(rng)), float(scale * u(rng)), float(scale * u(rng))}, float(scale * (0.1 + std::abs(u(rng))))};
-        const Vec3<float> o{float(4 * scale * u(rng)), float(4 * scale * u(rng)), float(4 * scale * u(rng))};
-        const Vec3<float> aim{float(s.center.x + 1.2 * s.radius * u(rng)), float(s.center.y + 1.2 * s.radius * u(rng)),
-                              float(s.center.z + 1.2 * s.radius * u(rng))};
-        Ray<float> r{o, aim - o};
-        if (i % 4 == 1) r.tmin = float(std::abs(u(rng))), r.tmax = float(1 + std::abs(u(rng)));  // windows that cut the roots
-        const float reach = detail::reach_of(r, s);
+        const Sphere<T> s{{T(scale * u(rng)), T(scale * u(rng)), T(scale * u(rng))}, T(scale * (0.1 + std::abs(u(rng))))};
+        const Vec3<T> o{T(4 * scale * u(rng)), T(4 * scale * u(rng)), T(4 * scale * u(rng))};
+        const Vec3<T> aim{T(s.center.x + 1.2 * s.radius * u(rng)), T(s.center.y + 1.2 * s.radius * u(rng)),
+                          T(s.center.z + 1.2 * s.radius * u(rng))};
+        Ray<T> r{o, aim - o};
+        if (i % 4 == 1) r.tmin = T(std::abs(u(rng))), r.tmax = T(1 + std::abs(u(rng)));  // windows that cut the roots
+        const T reach = detail::reach_of(r, s);
         for (const int limit : {1, 2}) {
             ++rays;
             const auto quick = detail::quick_curved_crossings(r, s, false, false, {false, false}, limit);
@@ -106,6 +107,11 @@ TEST(MagnitudeFilter, QuickLaneAgreesWithTheExactPath)
     }
     EXPECT_GT(answered, rays * 95 / 100);
 }
+
+TEST(MagnitudeFilter, QuickLaneAgreesWithTheExactPath) { expect_sphere_lane_agrees<float>(); }
+// Double spheres within 2^±64 (every fourth one reaches 2^±60) take the lane as well, their roots
+// rounded by a double-word Newton step.
+TEST(MagnitudeFilter, DoubleQuickLaneAgreesWithTheExactPath) { expect_sphere_lane_agrees<double>(); }
 
 // Non-finite inputs, and coefficients beyond 2^±400, leave the quick lane to the rescaled exact
 // path; large spheres whose coefficients stay within it do not.
@@ -302,23 +308,24 @@ TEST(MagnitudeFilter, FlatQuickLaneInDoubleAgreesWithTheExactPath)
 // path's span logic on certified signs and correctly rounded ends (QuickSolid) against the exact
 // path itself. Rays aim at the primitive's bounding box, some along the axis's direction (the
 // slab's comparisons with the side's roots), with windows that cut the crossings.
-TEST(MagnitudeFilter, AxialQuickLaneAgreesWithTheExactPath)
+template <class T>
+void expect_axial_lane_agrees()
 {
     std::mt19937_64 rng(0xA71A);
     std::uniform_real_distribution<double> u(-1, 1), lg(-3, 3);
     int rays = 0, answered = 0, crossings_seen = 0, caps_seen = 0;
     for (int i = 0; i < 16000; ++i) {
         const double scale = i % 4 == 3 ? std::ldexp(1.0, int(60 * u(rng))) : std::pow(10.0, lg(rng));
-        const auto point = [&](double s) { return Vec3<float>{float(s * u(rng)), float(s * u(rng)), float(s * u(rng))}; };
-        const Vec3<float> p0 = point(scale), p1 = p0 + point(scale);
-        const float r0 = float(scale * (0.1 + std::abs(u(rng)))), r1 = i % 3 == 0 ? 0.0f : float(scale * (0.1 + std::abs(u(rng))));
+        const auto point = [&](double s) { return Vec3<T>{T(s * u(rng)), T(s * u(rng)), T(s * u(rng))}; };
+        const Vec3<T> p0 = point(scale), p1 = p0 + point(scale);
+        const T r0 = T(scale * (0.1 + std::abs(u(rng)))), r1 = i % 3 == 0 ? T(0) : T(scale * (0.1 + std::abs(u(rng))));
         const Caps caps = i % 2 == 0 ? Caps::both : Caps::none;
-        Ray<float> r{point(4 * scale), {}};
+        Ray<T> r{point(4 * scale), {}};
         r.direction = p0 + point(1.5 * scale) - r.origin;
         if (i % 8 == 5) r.direction = (p1 - p0) + point(0.01 * scale);  // nearly along the axis
-        if (i % 4 == 1) r.tmin = float(std::abs(u(rng))), r.tmax = float(1 + std::abs(u(rng)));
+        if (i % 4 == 1) r.tmin = T(std::abs(u(rng))), r.tmax = T(1 + std::abs(u(rng)));
         const auto check = [&](const auto& prim, detail::CapEnds ends, const char* what) {
-            const float reach = detail::reach_of(r, prim);
+            const T reach = detail::reach_of(r, prim);
             for (const int limit : {1, 2}) {
                 ++rays;
                 const auto quick = detail::quick_curved_crossings(r, prim, true, prim.caps == Caps::both, ends, limit);
@@ -335,8 +342,8 @@ TEST(MagnitudeFilter, AxialQuickLaneAgreesWithTheExactPath)
                 }
             }
         };
-        check(Cylinder<float>{p0, p1, r0, caps}, detail::CapEnds{true, true}, "cylinder");
-        check(Cone<float>{p0, r0, p1, r1, caps}, detail::CapEnds{r0 > 0.0f, r1 > 0.0f}, "cone");
+        check(Cylinder<T>{p0, p1, r0, caps}, detail::CapEnds{true, true}, "cylinder");
+        check(Cone<T>{p0, r0, p1, r1, caps}, detail::CapEnds{r0 > T(0), r1 > T(0)}, "cone");
     }
     // Cylinders are answered ~98% of the time; cones ~85%: their coefficients cancel (magnitudes
     // 10²–10³ times the values), and about one root in six needs the exact path's Newton step.
@@ -344,6 +351,9 @@ TEST(MagnitudeFilter, AxialQuickLaneAgreesWithTheExactPath)
     EXPECT_GT(crossings_seen, rays / 8);
     EXPECT_GT(caps_seen, crossings_seen / 10);
 }
+
+TEST(MagnitudeFilter, AxialQuickLaneAgreesWithTheExactPath) { expect_axial_lane_agrees<float>(); }
+TEST(MagnitudeFilter, DoubleAxialQuickLaneAgreesWithTheExactPath) { expect_axial_lane_agrees<double>(); }
 
 }  // namespace
 }  // namespace rayq::test

@@ -296,6 +296,25 @@ inline bool scale_exactly(T& x, int k)
 template <class T>
 constexpr bool within_exact_range(T magnitude) { return magnitude >= T(0x1p-64) && magnitude <= T(0x1p64); }
 
+// Whether the static filter (magnitude.hpp) may take these inputs: each 0 or within 2^±64, so that
+// products of up to six of them stay in double's normal range. Float inputs, in double, always may.
+template <class T>
+RAYQ_INLINE bool within_static_range(T x)
+{
+    if constexpr (std::is_same_v<T, float>) return true;
+    else return x == T(0) || within_exact_range(std::abs(x));
+}
+template <class T>
+RAYQ_INLINE bool within_static_range(const Vec3<T>& v)
+{
+    return within_static_range(v.x) && within_static_range(v.y) && within_static_range(v.z);
+}
+template <class... X>
+RAYQ_INLINE bool all_within_static_range(const X&... x)
+{
+    return (within_static_range(x) && ...);
+}
+
 // A normal (or any direction whose length does not matter) scaled by a power of two so that its
 // largest component is near 1, when it is far from 1 and the scaling is exact: the exact inside
 // tests square it (a disk's rim at the plane's root has |n|² in every term), and a component of
@@ -511,23 +530,28 @@ inline Crossings<float> float_crossings_in_double(const Ray<float>& ray, const P
     return out;
 }
 
-// One part of a float curved primitive (the side's quadratic, or a cap's plane) for the quick
-// lane: ExactQuadratic's signs and roots decided by the static filter (magnitude.hpp) alone. A
-// sign is certain when the filter's bound decides it, or zero when the magnitude is (every
-// monomial vanishes); a root is its certified interval's correctly rounded float
-// (root_intervals or quotient, rounded_between_midpoints). Whatever the filter cannot decide sets
-// the shared `undecided` flag, and the lane's answer is then discarded.
+// One part of a curved primitive (the side's quadratic, or a cap's plane) for the quick lane:
+// ExactQuadratic's signs and roots decided by the static filter (magnitude.hpp) alone. A sign is
+// certain when the filter's bound decides it, or zero when the magnitude is (every monomial
+// vanishes). A float root is its certified interval's correctly rounded float (root_intervals or
+// quotient, rounded_between_midpoints); a double root, whose interval in double spans ulps, is
+// rounded by one certified double-word Newton step from the filter's estimate (newton_rounded).
+// Whatever cannot be decided sets the shared `undecided` flag, and the lane's answer is then
+// discarded. `coef` is the part's residual along the ray (PartCoefficients).
+template <class T, class Coef>
 class QuickQuadratic {
     using M = Magnitude<double>;
 
 public:
-    QuickQuadratic(const Residual<M>& r, bool& undecided) : r_(r), undecided_(&undecided)
+    QuickQuadratic(const Coef& coef, bool& undecided) : coef_(coef), r_(coef(M{0.0, 0.0, 0, 0, 0})), undecided_(&undecided)
     {
         // Every product of nonzero magnitudes must stay normal (magnitude.hpp): the coefficients
-        // have at most six float factors per monomial (b also the constant 2) and, for the
+        // have at most six input factors per monomial (b also the constant 2; double inputs are
+        // within 2^±64, quick_solid_crossings) and, for the
         // discriminant's products and root_intervals' running-error steps, magnitudes within
         // 2^±400 or exactly zero. (An infinite or NaN input fails here too.)
         const auto moderate = [](const M& x) { return x.m == 0.0 || (x.m >= 0x1p-400 && x.m <= 0x1p400); };
+        const Residual<M>& r = r_;
         if (!(r.a.d <= 6 && r.f.d <= 6 && r.df.d <= 7 && moderate(r.a) && moderate(r.df) && moderate(r.f))) undecided = true;
         a_ = sign_of(r.a);
         if (a_.sign != 0) {
@@ -543,23 +567,41 @@ public:
 
     // The root `which` (0 smaller, 1 larger; a line's only root when a vanishes), correctly rounded.
     // Both roots are rounded at once, from one pair of intervals.
-    float rounded(int which) const
+    T rounded(int which) const
     {
-        if (!rounded_) {
-            rounded_ = true;
-            std::optional<float> t[2];
-            if (a_.sign == 0) {
-                if (sign_b() != 0) t[0] = t[1] = rounded_between_midpoints<float>(quotient(-bounded(r_.f), bounded(r_.df)));
-            } else if (const auto roots = root_intervals(bounded(r_.a), bounded(r_.df), bounded(r_.f), bounded(disc_))) {
-                t[0] = rounded_between_midpoints<float>((*roots)[0]), t[1] = rounded_between_midpoints<float>((*roots)[1]);
+        if constexpr (std::is_same_v<T, float>) {
+            if (!rounded_) {
+                rounded_ = true;
+                std::optional<float> t[2];
+                if (a_.sign == 0) {
+                    if (sign_b() != 0) t[0] = t[1] = rounded_between_midpoints<float>(quotient(-bounded(r_.f), bounded(r_.df)));
+                } else if (const auto roots = root_intervals(bounded(r_.a), bounded(r_.df), bounded(r_.f), bounded(disc_))) {
+                    t[0] = rounded_between_midpoints<float>((*roots)[0]), t[1] = rounded_between_midpoints<float>((*roots)[1]);
+                }
+                if (!t[0] || !t[1]) *undecided_ = true;
+                root_[0] = t[0].value_or(0.0f), root_[1] = t[1].value_or(0.0f);
             }
-            if (!t[0] || !t[1]) *undecided_ = true;
-            root_[0] = t[0].value_or(0.0f), root_[1] = t[1].value_or(0.0f);
+        } else if (!done_[which]) {  // one Newton step per root, each only when asked for
+            done_[which] = true;
+            const std::optional<T> t = newton_from_estimate(which);
+            if (!t) *undecided_ = true;
+            root_[which] = t.value_or(T(0));
         }
         return root_[which];
     }
 
 private:
+    std::optional<T> newton_from_estimate(int which) const
+    {
+        if (a_.sign == 0) return sign_b() != 0 ? newton_rounded<T>(coef_, 0, 0, -r_.f.v / r_.df.v) : std::nullopt;
+        if (!(sign_disc_.known && sign_disc_.sign > 0)) return std::nullopt;
+        // The estimate from the filter's values by the cancellation-free q-form (Ray Tracing Gems
+        // ch. 7); the Newton step also checks that the root it rounds is `which`.
+        const T b = r_.df.v, q = T(-0.5) * (b + std::copysign(std::sqrt(std::max(disc_.v, T(0))), b));
+        const T g0 = q / r_.a.v, g1 = r_.f.v / q;
+        return newton_rounded<T>(coef_, a_.sign, which, (g0 < g1) == (which == 0) ? g0 : g1);
+    }
+
     struct Sign {
         int sign;
         bool known;
@@ -578,12 +620,17 @@ private:
         return s.sign;
     }
 
+    // Only a double's Newton steps use the residual again.
+    struct Unused {
+        explicit Unused(const Coef&) {}
+    };
+    std::conditional_t<std::is_same_v<T, float>, Unused, Coef> coef_;
     Residual<M> r_;
     M disc_;
     Sign a_, sign_disc_{0, true};
     bool* undecided_;
-    mutable bool rounded_ = false;
-    mutable float root_[2] = {};
+    mutable bool rounded_ = false, done_[2] = {false, false};
+    mutable T root_[2] = {};
 };
 
 // ExactSolid's interface for the quick lane, on QuickQuadratic parts. Its ends are compared
@@ -591,10 +638,12 @@ private:
 // strictly between its float's midpoints); equal ones leave the comparison undecided.
 template <class Prim>
 class QuickSolid {
-    using M = Magnitude<double>;
+    using T = scalar_t<Prim>;
+    using Coef = PartCoefficients<Prim>;
+    using Quadratic = QuickQuadratic<T, Coef>;
 
 public:
-    QuickSolid(const Ray<float>& ray, const Prim& prim, bool axial, bool& undecided)
+    QuickSolid(const Ray<T>& ray, const Prim& prim, bool axial, bool& undecided)
         : ray_(ray), prim_(prim), undecided_(undecided), side_(part(Part::surface))
     {
         if (axial) cap0_.emplace(part(Part::cap0)), cap1_.emplace(part(Part::cap1));
@@ -612,45 +661,50 @@ public:
         return order(value(x), value(y));
     }
     // sign(e − x) for a float x (a window bound; ±infinity allowed).
-    int compare(End e, float x) const
+    int compare(End e, T x) const
     {
-        constexpr float inf = std::numeric_limits<float>::infinity();
+        constexpr T inf = std::numeric_limits<T>::infinity();
         if (e.kind == EndKind::neg_inf) return x == -inf ? 0 : -1;
         if (e.kind == EndKind::pos_inf) return x == inf ? 0 : 1;
         return order(value(e), x);
     }
     bool in_window(End e) const { return compare(e, ray_.tmin) > 0 && compare(e, ray_.tmax) < 0; }
-    const QuickQuadratic& side() const { return side_; }
+    const Quadratic& side() const { return side_; }
 
     // The end's t correctly rounded.
-    float value(End e) const { return e.kind == EndKind::root ? side_.rounded(e.which) : (e.kind == EndKind::cap0 ? *cap0_ : *cap1_).rounded(0); }
+    T value(End e) const { return e.kind == EndKind::root ? side_.rounded(e.which) : (e.kind == EndKind::cap0 ? *cap0_ : *cap1_).rounded(0); }
 
 private:
-    // t = 0 enters as a constant, not as a float factor (the degrees count float factors).
-    QuickQuadratic part(Part p) const { return {PartCoefficients<Prim>{&prim_, &ray_, p}(M{0.0, 0.0, 0, 0, 0}), undecided_}; }
-    int order(float x, float y) const
+    Quadratic part(Part p) const { return {Coef{&prim_, &ray_, p}, undecided_}; }
+    int order(T x, T y) const
     {
         if (x != y) return x < y ? -1 : 1;
         undecided_ = true;
         return 0;
     }
 
-    const Ray<float>& ray_;
+    const Ray<T>& ray_;
     const Prim& prim_;
     bool& undecided_;
-    QuickQuadratic side_;
-    std::optional<QuickQuadratic> cap0_, cap1_;
+    Quadratic side_;
+    std::optional<Quadratic> cap0_, cap1_;
 };
 
-// The common case of a float curved primitive, settled by the quick lane: the exact path's span
-// logic (solid_crossings) on QuickSolid. None when anything is undecided: the exact path then
-// decides, and since its decisions are exact and a correctly rounded root is unique, both give
-// the same answer. Its filter is the static one of magnitude.hpp (about a third of Bounded's
-// cost), and everything is inlined (flatten) so that the filter's counts fold to constants.
-template <bool axial, class Prim>
-RAYQ_FLATTEN inline std::optional<Crossings<float>> quick_solid_crossings(const Ray<float>& ray, const Prim& prim, bool capped, CapEnds ends,
-                                                                          int limit)
+// The common case of a curved primitive, settled by the quick lane: the exact path's span logic
+// (solid_crossings) on QuickSolid. None when anything is undecided: the exact path then decides,
+// and since its decisions are exact and a correctly rounded root is unique, both give the same
+// answer. Its filter is the static one of magnitude.hpp (about a third of Bounded's cost), and
+// everything is inlined (flatten) so that the filter's counts fold to constants. Double inputs
+// must lie within its range (within_static_range); float ones always do.
+template <bool axial, class Prim, class T = scalar_t<Prim>>
+RAYQ_FLATTEN inline std::optional<Crossings<T>> quick_solid_crossings(const Ray<T>& ray, const Prim& prim, bool capped, CapEnds ends,
+                                                                      int limit)
 {
+    if constexpr (!std::is_same_v<T, float>) {
+        bool in_range = all_within_static_range(ray.origin, ray.direction);
+        each_length(prim, [&](const auto& x) { in_range = in_range && within_static_range(x); });
+        if (!in_range) return std::nullopt;
+    }
     bool undecided = false;
     const QuickSolid<Prim> solid(ray, prim, axial, undecided);
     if (undecided) return std::nullopt;
@@ -658,25 +712,29 @@ RAYQ_FLATTEN inline std::optional<Crossings<float>> quick_solid_crossings(const 
         // A sphere's side has a > 0: no crossing, or the one span between the roots. Written out,
         // this common case takes 11% fewer instructions per float sphere ray (callgrind) than
         // solid_crossings' general span logic.
-        const QuickQuadratic& side = solid.side();
+        const auto& side = solid.side();
         const int a = side.sign_a();
         if (undecided) return std::nullopt;
         if (a > 0) {
             const int disc = side.sign_disc();
             if (undecided) return std::nullopt;
-            if (disc < 0) return Crossings<float>{};
-            const float t0 = side.rounded(0), t1 = side.rounded(1);
-            if (undecided || t0 == ray.tmin || t0 == ray.tmax || t1 == ray.tmin || t1 == ray.tmax) return std::nullopt;
-            Crossings<float> out;
+            if (disc < 0) return Crossings<T>{};
+            // The exit is rounded only when it can count (a double's costs a Newton step).
+            const T t0 = side.rounded(0);
+            if (undecided || t0 == ray.tmin || t0 == ray.tmax) return std::nullopt;
+            Crossings<T> out;
             if (ray.tmin < t0 && t0 < ray.tmax) out.add(t0, Part::surface, true, true);
-            if (out.count < limit && ray.tmin < t1 && t1 < ray.tmax) out.add(t1, Part::surface, false, true);
+            if (out.count == limit || !(t0 < ray.tmax)) return out;
+            const T t1 = side.rounded(1);
+            if (undecided || t1 == ray.tmin || t1 == ray.tmax) return std::nullopt;
+            if (ray.tmin < t1 && t1 < ray.tmax) out.add(t1, Part::surface, false, true);
             return out;
         }
     }
     // Every crossing, whatever the limit: the closest hit and all crossings must take the same lane,
     // or their records could differ in t_error (found by the sphere libFuzzer harness's
     // intersect_all.first_is_intersect invariant, with a direction component 2^-63 beside 1).
-    Crossings<float> out = solid_crossings<float>(solid, axial, capped, ends, 2);
+    Crossings<T> out = solid_crossings<T>(solid, axial, capped, ends, 2);
     if (undecided) return std::nullopt;
     out.count = std::min(out.count, limit);
     return out;
@@ -684,8 +742,8 @@ RAYQ_FLATTEN inline std::optional<Crossings<float>> quick_solid_crossings(const 
 
 // (Axial as a constant, so that a sphere's lane carries no cap logic.)
 template <class Prim>
-inline std::optional<Crossings<float>> quick_curved_crossings(const Ray<float>& ray, const Prim& prim, bool axial, bool capped, CapEnds ends,
-                                                              int limit)
+inline std::optional<Crossings<scalar_t<Prim>>> quick_curved_crossings(const Ray<scalar_t<Prim>>& ray, const Prim& prim, bool axial, bool capped,
+                                                                       CapEnds ends, int limit)
 {
     return axial ? quick_solid_crossings<true>(ray, prim, capped, ends, limit) : quick_solid_crossings<false>(ray, prim, capped, ends, limit);
 }
@@ -694,8 +752,7 @@ template <class Prim>
 inline Crossings<scalar_t<Prim>> exact_curved_crossings(const Ray<scalar_t<Prim>>& ray, const Prim& prim, bool axial, bool capped,
                                                          CapEnds ends, int limit)
 {
-    if constexpr (std::is_same_v<scalar_t<Prim>, float>)
-        if (const auto quick = quick_curved_crossings(ray, prim, axial, capped, ends, limit)) return *quick;
+    if (const auto quick = quick_curved_crossings(ray, prim, axial, capped, ends, limit)) return *quick;
     return exact_curved_crossings_in_unit(ray, prim, axial, capped, ends, limit, reach_of(ray, prim));
 }
 
@@ -711,25 +768,6 @@ struct QuickFlat {
     int inside;
     bool in_range = true;  // the primitive's inputs are within the filter's range (within_static_range)
 };
-
-// Whether the static filter (magnitude.hpp) may take these inputs: each 0 or within 2^±64, so that
-// products of up to six of them stay in double's normal range. Float inputs, in double, always may.
-template <class T>
-RAYQ_INLINE bool within_static_range(T x)
-{
-    if constexpr (std::is_same_v<T, float>) return true;
-    else return x == T(0) || within_exact_range(std::abs(x));
-}
-template <class T>
-RAYQ_INLINE bool within_static_range(const Vec3<T>& v)
-{
-    return within_static_range(v.x) && within_static_range(v.y) && within_static_range(v.z);
-}
-template <class... X>
-RAYQ_INLINE bool all_within_static_range(const X&... x)
-{
-    return (within_static_range(x) && ...);
-}
 
 // A flat primitive's plane coefficients for QuickFlat. t = 0 enters as a constant, not as a float
 // factor, so the degrees count float factors only: two in a plane's or disk's coefficients, three
