@@ -175,20 +175,40 @@ void expect_flat_lane_agrees(const char* what, const Ray<float>& r, const FloatP
     }
 }
 
+// A random flat scene in T: a point c, normal n and edges e0, e1 at `scale`, a radius, and a ray
+// aimed near c, every eighth nearly in the plane (slope `parallel` against 1), every fourth with a
+// window that cuts the root.
+template <class T>
+struct FlatScene {
+    Vec3<T> c, n, e0, e1;
+    T radius;
+    Ray<T> ray;
+};
+template <class T>
+FlatScene<T> random_flat_scene(std::mt19937_64& rng, int i, int spread, double parallel)
+{
+    std::uniform_real_distribution<double> u(-1, 1), lg(-3, 3);
+    const double scale = i % 4 == 3 ? std::ldexp(1.0, int(spread * u(rng))) : std::pow(10.0, lg(rng));
+    const auto point = [&](double k) { return Vec3<T>{T(k * u(rng)), T(k * u(rng)), T(k * u(rng))}; };
+    FlatScene<T> f;
+    f.c = point(scale), f.n = point(1 + std::abs(u(rng))), f.e0 = point(scale), f.e1 = point(scale);
+    f.radius = T(scale * (0.1 + std::abs(u(rng))));
+    f.ray = {point(4 * scale), {}};
+    f.ray.direction = f.c + point(1.2 * scale) - f.ray.origin;
+    if (i % 8 == 5) f.ray.direction = cross(f.n, point(1)) + Vec3<T>{T(parallel * u(rng)), T(0), T(0)};
+    if (i % 4 == 1) f.ray.tmin = T(std::abs(u(rng))), f.ray.tmax = T(1 + std::abs(u(rng)));
+    return f;
+}
+
 TEST(MagnitudeFilter, FlatQuickLaneAgreesWithTheDoublePath)
 {
     std::mt19937_64 rng(0xF1A7);
-    std::uniform_real_distribution<double> u(-1, 1), lg(-3, 3);
     int rays = 0, answered = 0;
     for (int i = 0; i < 8000; ++i) {
-        const double scale = i % 4 == 3 ? std::ldexp(1.0, int(60 * u(rng))) : std::pow(10.0, lg(rng));
-        const auto point = [&](double s) { return Vec3<float>{float(s * u(rng)), float(s * u(rng)), float(s * u(rng))}; };
-        const Vec3<float> c = point(scale), n = point(1 + std::abs(u(rng))), e0 = point(scale), e1 = point(scale);
-        const float radius = float(scale * (0.1 + std::abs(u(rng))));
-        Ray<float> r{point(4 * scale), {}};
-        r.direction = c + point(1.2 * scale) - r.origin;
-        if (i % 8 == 5) r.direction = cross(n, point(1)) + Vec3<float>{float(0x1p-20 * u(rng)), 0.0f, 0.0f};  // nearly in the plane
-        if (i % 4 == 1) r.tmin = float(std::abs(u(rng))), r.tmax = float(1 + std::abs(u(rng)));
+        const FlatScene<float> f = random_flat_scene<float>(rng, i, 60, 0x1p-20);
+        const auto &c = f.c, &n = f.n, &e0 = f.e0, &e1 = f.e1;
+        const auto& radius = f.radius;
+        const auto& r = f.ray;
         const Plane<float> plane{c, n};
         const Disk<float> disk{c, n, radius};
         const Triangle<float> tri{c, c + e0, c + e1};
@@ -284,22 +304,14 @@ void expect_double_lane_agrees(const char* what, const Ray<double>& r, const Pri
 TEST(MagnitudeFilter, FlatQuickLaneInDoubleAgreesWithTheExactPath)
 {
     std::mt19937_64 rng(0xD0B1E);
-    std::uniform_real_distribution<double> u(-1, 1), lg(-3, 3);
     int rays = 0, answered = 0;
     for (int i = 0; i < 6000; ++i) {
-        const double scale = i % 4 == 3 ? std::ldexp(1.0, int(40 * u(rng))) : std::pow(10.0, lg(rng));
-        const auto point = [&](double k) { return Vec3<double>{k * u(rng), k * u(rng), k * u(rng)}; };
-        const Vec3<double> c = point(scale), n = point(1 + std::abs(u(rng))), e0 = point(scale), e1 = point(scale);
-        const double radius = scale * (0.1 + std::abs(u(rng)));
-        Ray<double> r{point(4 * scale), {}};
-        r.direction = c + point(1.2 * scale) - r.origin;
-        if (i % 8 == 5) r.direction = cross(n, point(1)) + Vec3<double>{0x1p-40 * u(rng), 0.0, 0.0};  // nearly in the plane
-        if (i % 4 == 1) r.tmin = std::abs(u(rng)), r.tmax = 1 + std::abs(u(rng));
+        const FlatScene<double> f = random_flat_scene<double>(rng, i, 40, 0x1p-40);
         rays += 4;
-        expect_double_lane_agrees("plane", r, Plane<double>{c, n}, answered, i);
-        expect_double_lane_agrees("disk", r, Disk<double>{c, n, radius}, answered, i);
-        expect_double_lane_agrees("triangle", r, Triangle<double>{c, c + e0, c + e1}, answered, i);
-        expect_double_lane_agrees("parallelogram", r, Parallelogram<double>{c, e0, e1}, answered, i);
+        expect_double_lane_agrees("plane", f.ray, Plane<double>{f.c, f.n}, answered, i);
+        expect_double_lane_agrees("disk", f.ray, Disk<double>{f.c, f.n, f.radius}, answered, i);
+        expect_double_lane_agrees("triangle", f.ray, Triangle<double>{f.c, f.c + f.e0, f.c + f.e1}, answered, i);
+        expect_double_lane_agrees("parallelogram", f.ray, Parallelogram<double>{f.c, f.e0, f.e1}, answered, i);
     }
     EXPECT_GT(answered, rays * 90 / 100);
 }

@@ -590,6 +590,25 @@ public:
         return root_[which];
     }
 
+    // A certified interval around root `which` from the filter alone (root_intervals, quotient),
+    // without rounding it; none when the filter cannot give one. Orders most ends of a double
+    // solid without their Newton steps (QuickSolid::interval_order).
+    std::optional<Bounded<double>> interval(int which) const
+    {
+        if (!intervals_) {
+            intervals_ = true;
+            if (a_.known && a_.sign == 0) {
+                const Sign b = sign_of(r_.df);
+                if (b.known && b.sign != 0) iv_[0] = iv_[1] = quotient(-bounded(r_.f), bounded(r_.df)), has_iv_ = true;
+            } else if (a_.known && sign_disc_.known && sign_disc_.sign > 0) {
+                if (const auto roots = root_intervals(bounded(r_.a), bounded(r_.df), bounded(r_.f), bounded(disc_)))
+                    iv_[0] = (*roots)[0], iv_[1] = (*roots)[1], has_iv_ = true;
+            }
+        }
+        if (!has_iv_) return std::nullopt;
+        return iv_[which];
+    }
+
 private:
     std::optional<T> newton_from_estimate(int which) const
     {
@@ -629,8 +648,9 @@ private:
     M disc_;
     Sign a_, sign_disc_{0, true};
     bool* undecided_;
-    mutable bool rounded_ = false, done_[2] = {false, false};
+    mutable bool rounded_ = false, done_[2] = {false, false}, intervals_ = false, has_iv_ = false;
     mutable T root_[2] = {};
+    mutable Bounded<double> iv_[2] = {};
 };
 
 // ExactSolid's interface for the quick lane, on QuickQuadratic parts. Its ends are compared
@@ -658,6 +678,8 @@ public:
         if (x.kind == y.kind && (!x.finite() || x.which == y.which)) return 0;
         if (x.kind == EndKind::neg_inf || y.kind == EndKind::pos_inf) return -1;
         if (x.kind == EndKind::pos_inf || y.kind == EndKind::neg_inf) return 1;
+        if constexpr (!std::is_same_v<T, float>)
+            if (const int s = interval_order(x, y)) return s;
         return order(value(x), value(y));
     }
     // sign(e − x) for a float x (a window bound; ±infinity allowed).
@@ -672,10 +694,23 @@ public:
     const Quadratic& side() const { return side_; }
 
     // The end's t correctly rounded.
-    T value(End e) const { return e.kind == EndKind::root ? side_.rounded(e.which) : (e.kind == EndKind::cap0 ? *cap0_ : *cap1_).rounded(0); }
+    T value(End e) const { return part_of(e).rounded(e.kind == EndKind::root ? e.which : 0); }
 
 private:
     Quadratic part(Part p) const { return {Coef{&prim_, &ray_, p}, undecided_}; }
+    const Quadratic& part_of(End e) const { return e.kind == EndKind::root ? side_ : (e.kind == EndKind::cap0 ? *cap0_ : *cap1_); }
+    // sign(x − y) when the filter's intervals around both ends are disjoint, else 0 (a double's
+    // rounding costs a Newton step; ends that become crossings are rounded all the same, and
+    // window bounds are compared with rounded ends, as the exact path's inside_window needs).
+    int interval_order(End x, End y) const
+    {
+        const auto ix = part_of(x).interval(x.which), iy = part_of(y).interval(y.which);
+        if (!ix || !iy) return 0;
+        const double margin = 1 - 2 * unit_roundoff<double>, gap = grow(ix->e + iy->e);  // as root_intervals
+        if ((iy->v - ix->v) * margin > gap) return -1;
+        if ((ix->v - iy->v) * margin > gap) return 1;
+        return 0;
+    }
     int order(T x, T y) const
     {
         if (x != y) return x < y ? -1 : 1;
@@ -730,14 +765,18 @@ RAYQ_FLATTEN inline std::optional<Crossings<T>> quick_solid_crossings(const Ray<
             if (ray.tmin < t1 && t1 < ray.tmax) out.add(t1, Part::surface, false, true);
             return out;
         }
+        // a = |d|² is 0 only for a zero direction, or a non-sphere: the exact path decides (and
+        // the general span logic below is not compiled into a sphere's lane).
+        return std::nullopt;
+    } else {
+        // Every crossing, whatever the limit: the closest hit and all crossings must take the same
+        // lane, or their records could differ in t_error (found by the sphere libFuzzer harness's
+        // intersect_all.first_is_intersect invariant, with a direction component 2^-63 beside 1).
+        Crossings<T> out = solid_crossings<T>(solid, axial, capped, ends, 2);
+        if (undecided) return std::nullopt;
+        out.count = std::min(out.count, limit);
+        return out;
     }
-    // Every crossing, whatever the limit: the closest hit and all crossings must take the same lane,
-    // or their records could differ in t_error (found by the sphere libFuzzer harness's
-    // intersect_all.first_is_intersect invariant, with a direction component 2^-63 beside 1).
-    Crossings<T> out = solid_crossings<T>(solid, axial, capped, ends, 2);
-    if (undecided) return std::nullopt;
-    out.count = std::min(out.count, limit);
-    return out;
 }
 
 // (Axial as a constant, so that a sphere's lane carries no cap logic.)
