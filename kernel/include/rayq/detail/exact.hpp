@@ -39,9 +39,8 @@ template <> struct ExactComponent<float> { using type = double; };
 // The accurate policy's first filter precision: T's own, except for float, whose first filter is
 // hardware double (wide_t<float>): in scalar code it costs what float does, and its bounds are
 // 2^29 times tighter, tight enough to round most roots correctly without a Newton step
-// (ExactQuadratic::interval_round). (Float primitives' common case first takes the cheaper
-// static filter of magnitude.hpp: exact_crossings.hpp, quick_curved_crossings and
-// quick_flat_crossing.)
+// (ExactQuadratic::interval_round). (A primitive's common case first takes the cheaper static
+// filter of magnitude.hpp: exact_crossings.hpp, quick_curved_crossings and quick_flat_crossing.)
 template <class T> struct First { using type = Bounded<T>; };
 template <> struct First<float> { using type = Bounded<double>; };
 template <class T>
