@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <random>
 
@@ -16,6 +17,7 @@ namespace rayq::detail {
 namespace {
 
 __extension__ typedef __int128 Int;  // NOLINT: GCC and clang's 128-bit integer, exact up to 2^127
+__extension__ typedef unsigned __int128 UInt;  // NOLINT
 
 int sign(Int x) { return x > 0 ? 1 : (x < 0 ? -1 : 0); }
 
@@ -76,6 +78,62 @@ TEST(Dyadic, HoldsValuesBeyondDoublesRange)
     // Negation and cancellation in both orders.
     EXPECT_EQ((Dyadic(sub) - Dyadic(2 * sub)).sign(), -1);
     EXPECT_EQ((Dyadic(-0.75f) + Dyadic(0.5) + Dyadic(0.25)).sign(), 0);
+}
+
+TEST(Dyadic, LimbProductsAgreeWithThePortableForm)
+{
+    // multiply_add uses the compiler's 128-bit integer where there is one; the portable form of
+    // four 32-bit products must give the same two words, carries at their extremes included.
+    const std::uint64_t max = ~std::uint64_t(0);
+    const std::uint64_t edges[] = {0, 1, 2, 0xffffffffu, 0x100000000u, max / 2, max - 1, max};
+    for (std::uint64_t a : edges)
+        for (std::uint64_t b : edges)
+            for (std::uint64_t add : edges)
+                for (std::uint64_t carry : edges) {
+                    const WideProduct p = multiply_add_portable(a, b, add, carry);
+                    const WideProduct q = multiply_add(a, b, add, carry);
+                    ASSERT_EQ(p.lo, q.lo) << a << ' ' << b << ' ' << add << ' ' << carry;
+                    ASSERT_EQ(p.hi, q.hi) << a << ' ' << b << ' ' << add << ' ' << carry;
+                    const UInt exact = UInt(a) * b + add + carry;
+                    ASSERT_EQ(p.lo, std::uint64_t(exact));
+                    ASSERT_EQ(p.hi, std::uint64_t(exact >> 64));
+                }
+    std::mt19937_64 rng(5);
+    for (int i = 0; i < 100000; ++i) {
+        const std::uint64_t a = rng(), b = rng(), add = rng(), carry = rng();
+        const WideProduct p = multiply_add_portable(a, b, add, carry);
+        const UInt exact = UInt(a) * b + add + carry;
+        ASSERT_EQ(p.lo, std::uint64_t(exact));
+        ASSERT_EQ(p.hi, std::uint64_t(exact >> 64));
+    }
+}
+
+TEST(Dyadic, ProductsOfLongSumsExpandAsPolynomials)
+{
+    // Sums of far-apart doubles are integers of many limbs; (a + b)(c + d) must equal the sum of
+    // the four products and (a + b)² − (a − b)² = 4ab exactly, whatever the carries across limbs.
+    std::mt19937_64 rng(29);
+    std::uniform_int_distribution<int> exponent(-1074, 1023);
+    std::uniform_real_distribution<double> unit(0.5, 1.0);
+    const auto draw = [&] {
+        const double x = std::ldexp(unit(rng), exponent(rng));
+        return rng() % 2 ? -x : x;
+    };
+    for (int i = 0; i < 3000; ++i) {
+        const Dyadic a = Dyadic(draw()) + Dyadic(draw()), b = Dyadic(draw()) + Dyadic(draw());
+        const Dyadic c = Dyadic(draw()) + Dyadic(draw()), d = Dyadic(draw());
+        ASSERT_EQ(((a + b) * (c + d) - (a * c + a * d + b * c + b * d)).sign(), 0) << i;
+        ASSERT_EQ(((a + b) * (a + b) - (a - b) * (a - b) - Dyadic(4.0) * a * b).sign(), 0) << i;
+        const Dyadic square = (a + b) * (a + b);
+        ASSERT_EQ(square.sign(), (a + b).sign() == 0 ? 0 : 1) << i;
+        // The top 53 bits of a product: those of the factors' product, rounded within 2 ulps.
+        const auto [ma, ea] = a.frexp();
+        const auto [mc, ec] = c.frexp();
+        const auto [mp, ep] = (a * c).frexp();
+        const double expected = ma * mc * (std::abs(ma * mc) < 0.5 ? 2.0 : 1.0);
+        ASSERT_EQ(ep, ea + ec - (std::abs(ma * mc) < 0.5 ? 1 : 0)) << i;
+        ASSERT_LE(std::abs(mp - expected), 0x1p-51) << i;
+    }
 }
 
 TEST(Dyadic, NonFiniteInputsAreFlagged)

@@ -15,6 +15,38 @@
 
 namespace rayq::detail {
 
+// One limb product: hi·2^64 + lo = a·b + addend + carry, which cannot overflow 128 bits. With
+// GCC's and clang's 128-bit integer where there is one; the portable form (four 32-bit products)
+// elsewhere, and in a test that checks the two agree.
+struct WideProduct {
+    std::uint64_t lo, hi;
+};
+inline WideProduct multiply_add_portable(std::uint64_t a, std::uint64_t b, std::uint64_t addend, std::uint64_t carry)
+{
+    const std::uint64_t mask = 0xffffffffu;
+    const std::uint64_t a0 = a & mask, a1 = a >> 32, b0 = b & mask, b1 = b >> 32;
+    const std::uint64_t p00 = a0 * b0, p01 = a0 * b1, p10 = a1 * b0, p11 = a1 * b1;
+    // The middle column: each term < 2^64 − 2^33 + 3, their sum's carries counted apart.
+    const std::uint64_t middle = (p00 >> 32) + (p01 & mask) + (p10 & mask);
+    std::uint64_t lo = (middle << 32) | (p00 & mask);
+    std::uint64_t hi = p11 + (p01 >> 32) + (p10 >> 32) + (middle >> 32);
+    lo += addend;
+    hi += lo < addend;
+    lo += carry;
+    hi += lo < carry;
+    return {lo, hi};
+}
+inline WideProduct multiply_add(std::uint64_t a, std::uint64_t b, std::uint64_t addend, std::uint64_t carry)
+{
+#if defined(__SIZEOF_INT128__)
+    __extension__ typedef unsigned __int128 Wide;  // NOLINT: GCC and clang's 128-bit integer
+    const Wide t = Wide(a) * b + addend + carry;
+    return {static_cast<std::uint64_t>(t), static_cast<std::uint64_t>(t >> 64)};
+#else
+    return multiply_add_portable(a, b, addend, carry);
+#endif
+}
+
 class Dyadic {
 public:
     Dyadic() = default;
@@ -29,8 +61,7 @@ public:
         if (d == 0.0) return;
         int e = 0;
         const double m = std::frexp(std::abs(d), &e);  // |d| = m·2^e, m in [1/2, 1)
-        const auto bits = static_cast<std::uint64_t>(std::ldexp(m, 53));
-        limbs_ = {static_cast<std::uint32_t>(bits), static_cast<std::uint32_t>(bits >> 32)};
+        limbs_ = {static_cast<std::uint64_t>(std::ldexp(m, 53))};
         exponent_ = e - 53;
         sign_ = d > 0 ? 1 : -1;
         normalize();
@@ -44,11 +75,15 @@ public:
     std::pair<double, long> frexp() const
     {
         if (sign_ == 0) return {0.0, 0};
-        const long length = 32L * long(limbs_.size() - 1) + (32 - count_leading_zeros(limbs_.back()));
-        std::uint64_t top = 0;  // bits [length − 53, length)
-        for (long bit = length - 1; bit >= std::max(0L, length - 53); --bit)
-            top = (top << 1) | ((limbs_[std::size_t(bit / 32)] >> (bit % 32)) & 1u);
+        const long length = 64L * long(limbs_.size() - 1) + (64 - count_leading_zeros(limbs_.back()));
+        // Bits [length − 53, length): from the top limb and, when it has fewer, the one below.
         const int kept = int(std::min(length, 53L));
+        const long low = length - kept;
+        const std::size_t at = std::size_t(low / 64);
+        const int shift = int(low % 64);
+        std::uint64_t top = limbs_[at] >> shift;
+        if (shift != 0 && at + 1 < limbs_.size()) top |= limbs_[at + 1] << (64 - shift);
+        top &= (std::uint64_t(1) << kept) - 1;
         return {sign_ * std::ldexp(double(top), -kept), length + exponent_};
     }
 
@@ -91,11 +126,11 @@ public:
         for (std::size_t i = 0; i < a.limbs_.size(); ++i) {
             std::uint64_t carry = 0;
             for (std::size_t j = 0; j < b.limbs_.size(); ++j) {
-                const std::uint64_t t = std::uint64_t(a.limbs_[i]) * b.limbs_[j] + r.limbs_[i + j] + carry;
-                r.limbs_[i + j] = static_cast<std::uint32_t>(t);
-                carry = t >> 32;
+                const WideProduct t = multiply_add(a.limbs_[i], b.limbs_[j], r.limbs_[i + j], carry);
+                r.limbs_[i + j] = t.lo;
+                carry = t.hi;
             }
-            r.limbs_[i + b.limbs_.size()] = static_cast<std::uint32_t>(carry);
+            r.limbs_[i + b.limbs_.size()] = carry;
         }
         r.exponent_ = a.exponent_ + b.exponent_;
         r.sign_ = a.sign_ * b.sign_;
@@ -105,13 +140,27 @@ public:
     friend Dyadic& operator+=(Dyadic& a, const Dyadic& b) { return a = a + b; }
 
 private:
-    using Limbs = std::vector<std::uint32_t>;  // little-endian
+    using Limbs = std::vector<std::uint64_t>;  // little-endian
 
-    static int count_leading_zeros(std::uint32_t x)
+    static int count_leading_zeros(std::uint64_t x)  // x != 0
     {
+#if defined(__GNUC__)
+        return __builtin_clzll(x);
+#else
         int n = 0;
-        while ((x & 0x80000000u) == 0) x <<= 1, ++n;
+        while ((x & (std::uint64_t(1) << 63)) == 0) x <<= 1, ++n;
         return n;
+#endif
+    }
+    static int count_trailing_zeros(std::uint64_t x)  // x != 0
+    {
+#if defined(__GNUC__)
+        return __builtin_ctzll(x);
+#else
+        int n = 0;
+        while ((x & 1u) == 0) x >>= 1, ++n;
+        return n;
+#endif
     }
     static Dyadic not_finite()
     {
@@ -122,15 +171,15 @@ private:
     // x·2^bits, with room for at least `size` limbs.
     static Limbs shifted_left(const Limbs& x, long bits, std::size_t size)
     {
-        const std::size_t whole = static_cast<std::size_t>(bits / 32);
-        const int part = static_cast<int>(bits % 32);
+        const std::size_t whole = static_cast<std::size_t>(bits / 64);
+        const int part = static_cast<int>(bits % 64);
         Limbs r;
         r.reserve(std::max(whole + x.size() + 1, size));
         r.assign(whole, 0);
-        std::uint32_t carry = 0;
-        for (std::uint32_t limb : x) {
+        std::uint64_t carry = 0;
+        for (std::uint64_t limb : x) {
             r.push_back(part == 0 ? limb : (limb << part) | carry);
-            carry = part == 0 ? 0 : limb >> (32 - part);
+            carry = part == 0 ? 0 : limb >> (64 - part);
         }
         if (carry != 0) r.push_back(carry);
         return r;
@@ -152,9 +201,11 @@ private:
         x.push_back(0);
         std::uint64_t carry = 0;
         for (std::size_t i = 0; i < x.size(); ++i) {
-            const std::uint64_t t = std::uint64_t(x[i]) + (i < y.size() ? y[i] : 0u) + carry;
-            x[i] = static_cast<std::uint32_t>(t);
-            carry = t >> 32;
+            const std::uint64_t yi = i < y.size() ? y[i] : 0u;
+            const std::uint64_t s = x[i] + yi;
+            const std::uint64_t t = s + carry;
+            carry = std::uint64_t(s < yi) + std::uint64_t(t < s);  // at most one of them
+            x[i] = t;
             if (carry == 0 && i >= y.size()) break;
         }
     }
@@ -162,13 +213,14 @@ private:
     static void subtract_in_place(Limbs& x, const Limbs& y, bool x_larger)
     {
         if (x.size() < y.size()) x.resize(y.size(), 0);
-        std::int64_t borrow = 0;
+        std::uint64_t borrow = 0;
         for (std::size_t i = 0; i < x.size(); ++i) {
-            const std::int64_t xi = x[i], yi = i < y.size() ? std::int64_t(y[i]) : 0;
-            std::int64_t t = (x_larger ? xi - yi : yi - xi) - borrow;
-            borrow = t < 0 ? 1 : 0;
-            if (t < 0) t += std::int64_t(1) << 32;
-            x[i] = static_cast<std::uint32_t>(t);
+            const std::uint64_t yi = i < y.size() ? y[i] : 0u;
+            const std::uint64_t minuend = x_larger ? x[i] : yi, subtrahend = x_larger ? yi : x[i];
+            const std::uint64_t d = minuend - subtrahend;
+            const std::uint64_t t = d - borrow;
+            borrow = std::uint64_t(minuend < subtrahend) + std::uint64_t(d < borrow);  // at most one of them
+            x[i] = t;
         }
     }
     // An odd integer (trailing zero bits moved into the exponent) with a nonzero top limb: keeps
@@ -183,16 +235,15 @@ private:
         }
         std::size_t zeros = 0;
         while (limbs_[zeros] == 0) ++zeros;
-        int bits = 0;
-        while (((limbs_[zeros] >> bits) & 1u) == 0) ++bits;
+        const int bits = count_trailing_zeros(limbs_[zeros]);
         if (zeros == 0 && bits == 0) return;
         for (std::size_t i = zeros; i < limbs_.size(); ++i) {
-            const std::uint32_t high = i + 1 < limbs_.size() ? limbs_[i + 1] : 0u;
-            limbs_[i - zeros] = bits == 0 ? limbs_[i] : (limbs_[i] >> bits) | (high << (32 - bits));
+            const std::uint64_t high = i + 1 < limbs_.size() ? limbs_[i + 1] : 0u;
+            limbs_[i - zeros] = bits == 0 ? limbs_[i] : (limbs_[i] >> bits) | (high << (64 - bits));
         }
         limbs_.resize(limbs_.size() - zeros);
         while (!limbs_.empty() && limbs_.back() == 0) limbs_.pop_back();
-        exponent_ += 32L * long(zeros) + bits;
+        exponent_ += 64L * long(zeros) + bits;
     }
 
     Limbs limbs_;        // |value| = limbs·2^exponent, odd; empty for zero
