@@ -15,6 +15,7 @@
 #include "../detail/exact_crossings.hpp"
 #include "../detail/inline.hpp"
 #include "../detail/lanes.hpp"
+#include "../detail/ulp.hpp"
 #include "../ray.hpp"
 #include "../vec3.hpp"
 
@@ -32,7 +33,7 @@ batch::BoundingSphere<T> to_bound(const Vec3<double>& c, double radius, double f
 {
     const double r = radius * (1 + 64 * std::numeric_limits<double>::epsilon());
     T rt = static_cast<T>(r);
-    if (static_cast<double>(rt) < r) rt = std::nextafter(rt, std::numeric_limits<T>::infinity());
+    if (static_cast<double>(rt) < r) rt = next_up(rt);  // inline: this runs per ray in accurate's own miss test
     return {{static_cast<T>(c.x), static_cast<T>(c.y), static_cast<T>(c.z)}, rt, static_cast<T>(fine)};
 }
 
