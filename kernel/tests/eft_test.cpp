@@ -4,6 +4,7 @@
 #include <cstring>
 #include <random>
 
+#include <rayq/detail/exact.hpp>
 #include <rayq/detail/ulp.hpp>
 
 namespace rayq::test {
@@ -41,6 +42,38 @@ TEST(ErrorFreeTransformations, NextUpAndDownEqualNextafter)
 {
     check_neighbours<float, std::uint32_t>();
     check_neighbours<double, std::uint64_t>();
+}
+
+// rounded_between_midpoints (exact.hpp) accepts a root interval exactly when it lies strictly
+// between the midpoints from t to its neighbours: both sides, at powers of two (where the lower
+// neighbour is closer), FLT_MIN, FLT_MAX, subnormals and random floats of either sign.
+TEST(ErrorFreeTransformations, RoundingBetweenMidpointsUsesTheNeighbours)
+{
+    std::mt19937 rng(0x3107);
+    const float max = std::numeric_limits<float>::max(), min = std::numeric_limits<float>::min();
+    std::vector<float> ts = {1.0f, 2.0f, 0.5f, 1.5f, max, min, 2 * min, 1.5f * min, std::numeric_limits<float>::denorm_min(), 0x1p-140f,
+                             0x1.8p-130f, 0x1p100f, std::nextafter(1.0f, 2.0f), std::nextafter(1.0f, 0.0f)};
+    for (int i = 0; i < 50000; ++i) {
+        const std::uint32_t b = static_cast<std::uint32_t>(rng());
+        float x;
+        std::memcpy(&x, &b, sizeof x);
+        if (std::isfinite(x) && x != 0.0f) ts.push_back(x);
+    }
+    const std::size_t n = ts.size();
+    for (std::size_t i = 0; i < n; ++i) ts.push_back(-ts[i]);
+    for (const float t : ts) {
+        const double down = detail::next_down(t), up = detail::next_up(t);
+        // ±FLT_MAX's outer midpoint is the overflow threshold, half an ulp beyond it.
+        const double lo = std::isinf(down) ? double(t) - (up - double(t)) / 2 : (down + t) / 2;
+        const double hi = std::isinf(up) ? double(t) + (double(t) - down) / 2 : (double(t) + up) / 2;
+        for (const double s : {(double(t) - lo) / 2, -(hi - double(t)) / 2}) {  // an interval near each midpoint
+            const double v = s > 0 ? lo + s : hi + s, e = std::abs(s);
+            const auto inside = detail::rounded_between_midpoints<float>(detail::Bounded<double>{v, e * (1 - 0x1p-20)});
+            ASSERT_TRUE(inside.has_value()) << t << ' ' << s;
+            EXPECT_EQ(*inside, t);
+            EXPECT_FALSE(detail::rounded_between_midpoints<float>(detail::Bounded<double>{v, e * (1 + 0x1p-20)}).has_value()) << t << ' ' << s;
+        }
+    }
 }
 
 TEST(ErrorFreeTransformations, TwoProductIsExact)

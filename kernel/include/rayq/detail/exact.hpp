@@ -139,7 +139,27 @@ RAYQ_INLINE std::optional<T> rounded_between_midpoints(const Bounded<W>& root)
     const T t = static_cast<T>(root.v);
     if (!std::isfinite(t) || t == T(0) || !std::isfinite(root.e)) return std::nullopt;
     // Midpoints between t and its neighbours are exact in W; the root must lie strictly between them.
-    const W below = (W(next_down(t)) + W(t)) / W(2), above = (W(t) + W(next_up(t))) / W(2);
+    W below, above;
+    if constexpr (std::is_same_v<T, float> && std::is_same_v<W, double>) {
+        // Half the spacing from t's exponent bits (the hot case, inline and without branches on
+        // the neighbours): 2^(E − 24) away from zero, and half that toward zero when |t| is a
+        // power of two above FLT_MIN. Subnormal t (exponent bits 0) takes the general form below.
+        std::uint32_t bits;
+        std::memcpy(&bits, &t, sizeof bits);
+        const std::uint32_t exponent = bits & 0x7f800000u;
+        if (exponent != 0) {
+            float power;  // 2^E, |t| in [2^E, 2^(E+1))
+            std::memcpy(&power, &exponent, sizeof power);
+            const double away = double(power) * 0x1p-24;
+            const double toward = (bits & 0x007fffffu) == 0 && exponent > 0x00800000u ? away * 0.5 : away;  // FLT_MIN's lower neighbour is as close as its upper
+            const bool positive = t > 0.0f;
+            below = double(t) - (positive ? toward : away), above = double(t) + (positive ? away : toward);
+        } else {
+            below = (W(next_down(t)) + W(t)) / W(2), above = (W(t) + W(next_up(t))) / W(2);
+        }
+    } else {
+        below = (W(next_down(t)) + W(t)) / W(2), above = (W(t) + W(next_up(t))) / W(2);
+    }
     if ((root.v - below) * margin > root.e && (above - root.v) * margin > root.e) return t;
     return std::nullopt;
 }
