@@ -213,28 +213,15 @@ TEST(MagnitudeFilter, FlatQuickLaneAgreesWithTheDoublePath)
         const Disk<float> disk{c, n, radius};
         const Triangle<float> tri{c, c + e0, c + e1};
         const Parallelogram<float> quad{c, e0, e1};
-        const auto frame = [](const auto& corner, const auto& a, const auto& b) {
-            return [=](auto zero) {
-                using N = decltype(zero);
-                const Vec3<N> k = detail::lift<N>(corner);
-                return detail::PlanarFrame<N>{k, detail::lift<N>(a) - k, detail::lift<N>(b) - k};
-            };
-        };
-        const auto quad_frame = [&](auto zero) {
-            using N = decltype(zero);
-            return detail::PlanarFrame<N>{detail::lift<N>(c), detail::lift<N>(e0), detail::lift<N>(e1)};
-        };
         rays += 4;
-        expect_flat_lane_agrees("plane", r, plane, Plane<double>{widened<double>(c), widened<double>(n)}, [&] {
-            const auto p = detail::quick_plane(r, plane);
-            return detail::QuickFlat{p.f, p.df, 1};
-        }, answered, i);
+        expect_flat_lane_agrees("plane", r, plane, Plane<double>{widened<double>(c), widened<double>(n)},
+                                [&] { return detail::quick_flat(r, plane); }, answered, i);
         expect_flat_lane_agrees("disk", r, disk, Disk<double>{widened<double>(c), widened<double>(n), double(radius)},
-                                [&] { return detail::quick_disk(r, disk); }, answered, i);
+                                [&] { return detail::quick_flat(r, disk); }, answered, i);
         expect_flat_lane_agrees("triangle", r, tri, Triangle<double>{widened<double>(tri.a), widened<double>(tri.b), widened<double>(tri.c)},
-                                [&] { return detail::quick_planar(r, frame(tri.a, tri.b, tri.c), true, true); }, answered, i);
+                                [&] { return detail::quick_flat(r, tri); }, answered, i);
         expect_flat_lane_agrees("parallelogram", r, quad, Parallelogram<double>{widened<double>(c), widened<double>(e0), widened<double>(e1)},
-                                [&] { return detail::quick_planar(r, quad_frame, false, true); }, answered, i);
+                                [&] { return detail::quick_flat(r, quad); }, answered, i);
     }
     EXPECT_GT(answered, rays * 90 / 100);
 }
@@ -254,42 +241,17 @@ Triangle<double> scaled_lengths(const Triangle<double>& p, double s) { return {s
 template <>
 Parallelogram<double> scaled_lengths(const Parallelogram<double>& p, double s) { return {s * p.corner, s * p.edge0, s * p.edge1}; }
 
-// The lane's QuickFlat for each flat primitive, as its accurate crossings() builds it.
-detail::QuickFlat quick_of(const Ray<double>& r, const Plane<double>& p)
-{
-    const auto plane = detail::quick_plane(r, p);
-    return {plane.f, plane.df, 1, detail::all_within_static_range(p.point, p.normal)};
-}
-detail::QuickFlat quick_of(const Ray<double>& r, const Disk<double>& d) { return detail::quick_disk(r, d); }
-detail::QuickFlat quick_of(const Ray<double>& r, const Triangle<double>& t)
-{
-    const auto frame = [&](auto zero) {
-        using N = decltype(zero);
-        const Vec3<N> a = detail::lift<N>(t.a);
-        return detail::PlanarFrame<N>{a, detail::lift<N>(t.b) - a, detail::lift<N>(t.c) - a};
-    };
-    return detail::quick_planar(r, frame, true, detail::all_within_static_range(t.a, t.b, t.c));
-}
-detail::QuickFlat quick_of(const Ray<double>& r, const Parallelogram<double>& p)
-{
-    const auto frame = [&](auto zero) {
-        using N = decltype(zero);
-        return detail::PlanarFrame<N>{detail::lift<N>(p.corner), detail::lift<N>(p.edge0), detail::lift<N>(p.edge1)};
-    };
-    return detail::quick_planar(r, frame, false, detail::all_within_static_range(p.corner, p.edge0, p.edge1));
-}
-
 template <class Prim>
 void expect_double_lane_agrees(const char* what, const Ray<double>& r, const Prim& prim, int& answered, int i)
 {
     constexpr double s = 0x1p200;
     const Ray<double> far{s * r.origin, r.direction, s * r.tmin, s * r.tmax};
     const Crossings<double> reference = crossings(accurate, far, scaled_lengths(prim, s));
-    ASSERT_TRUE(!detail::quick_flat_crossing(far, [&] { return quick_of(far, scaled_lengths(prim, s)); },
+    ASSERT_TRUE(!detail::quick_flat_crossing(far, [&] { return detail::quick_flat(far, scaled_lengths(prim, s)); },
                                              detail::PartCoefficients<Prim>{&prim, &far, Part::surface}))
         << "the reference took the lane";
     const std::optional<Crossings<double>> lane =
-        detail::quick_flat_crossing(r, [&] { return quick_of(r, prim); }, detail::PartCoefficients<Prim>{&prim, &r, Part::surface});
+        detail::quick_flat_crossing(r, [&] { return detail::quick_flat(r, prim); }, detail::PartCoefficients<Prim>{&prim, &r, Part::surface});
     answered += lane.has_value();
     const Crossings<double> full = crossings(accurate, r, prim);
     for (const Crossings<double>* c : {&full, lane ? &*lane : nullptr}) {

@@ -68,7 +68,7 @@ namespace detail {
 // at the root t = −f/(d·n), |w|² − r²·(d·n)² has the rim's sign and six float factors per
 // monomial.
 template <class T>
-inline QuickFlat quick_disk(const Ray<T>& ray, const Disk<T>& disk)
+inline QuickFlat quick_flat(const Ray<T>& ray, const Disk<T>& disk)
 {
     using M = Magnitude<double>;
     if (!all_within_static_range(disk.center, disk.normal, disk.radius)) return {{}, {}, 0, false};
@@ -95,7 +95,7 @@ inline Crossings<T> crossings(accurate_policy, const Ray<T>& ray, const Disk<T>&
     const detail::PartCoefficients<Disk<T>> plane{&disk, &ray, Part::surface};
     return detail::exact_flat_crossing(
         ray, disk, [&](const auto&) { return detail::quadratic_sign_at<T>(rim, plane) <= 0; },
-        [&] { return detail::quick_disk(ray, disk); });
+        [&] { return detail::quick_flat(ray, disk); });
 }
 
 template <class T>

@@ -61,18 +61,32 @@ inline detail::Residual<N> residual(const Parallelogram<T>& p, const Vec3<N>& o,
     return detail::plane_residual(p.corner, cross(detail::lift<N>(p.edge0), detail::lift<N>(p.edge1)), o, d, t);
 }
 
+namespace detail {
+// The frame (corner, edge0, edge1) in any number type, for the exact and the quick planar tests.
+template <class T>
+inline auto planar_frame(const Parallelogram<T>& p)
+{
+    return [&p](auto zero) {
+        using N = decltype(zero);
+        return PlanarFrame<N>{lift<N>(p.corner), lift<N>(p.edge0), lift<N>(p.edge1)};
+    };
+}
+// The quick lane's plane and trim (exact_crossings.hpp, QuickFlat).
+template <class T>
+inline QuickFlat quick_flat(const Ray<T>& ray, const Parallelogram<T>& p)
+{
+    return quick_planar(ray, planar_frame(p), false, all_within_static_range(p.corner, p.edge0, p.edge1));
+}
+}  // namespace detail
+
 // Accurate: exact decisions, correctly rounded t (detail/exact_crossings.hpp).
 template <class T>
 inline Crossings<T> crossings(accurate_policy, const Ray<T>& ray, const Parallelogram<T>& p)
 {
-    const auto edges = [&](auto zero) {
-        using N = decltype(zero);
-        return detail::PlanarFrame<N>{detail::lift<N>(p.corner), detail::lift<N>(p.edge0), detail::lift<N>(p.edge1)};
-    };
     // det = e0·(d × e1) = −d·n, so its sign is minus the plane's slope along the ray.
     return detail::exact_flat_crossing(
-        ray, p, [&](const auto& plane) { return detail::exact_planar_inside(ray, edges, -plane.sign_b(), false); },
-        [&] { return detail::quick_planar(ray, edges, false, detail::all_within_static_range(p.corner, p.edge0, p.edge1)); });
+        ray, p, [&](const auto& plane) { return detail::exact_planar_inside(ray, detail::planar_frame(p), -plane.sign_b(), false); },
+        [&] { return detail::quick_flat(ray, p); });
 }
 
 template <class T>

@@ -50,15 +50,21 @@ inline detail::Residual<N> residual(const Plane<T>& p, const Vec3<N>& o, const V
     return detail::plane_residual(p.point, detail::lift<N>(p.normal), o, d, t);
 }
 
+namespace detail {
+// The quick lane's plane (exact_crossings.hpp, QuickFlat): no trim, every point of the plane counts.
+template <class T>
+inline QuickFlat quick_flat(const Ray<T>& ray, const Plane<T>& p)
+{
+    const auto plane = quick_plane(ray, p);
+    return {plane.f, plane.df, 1, all_within_static_range(p.point, p.normal)};
+}
+}  // namespace detail
+
 // Accurate: exact decisions, correctly rounded t (detail/exact_crossings.hpp).
 template <class T>
 inline Crossings<T> crossings(accurate_policy, const Ray<T>& ray, const Plane<T>& p)
 {
-    return detail::exact_flat_crossing(
-        ray, p, [](const auto&) { return true; }, [&] {
-            const auto plane = detail::quick_plane(ray, p);
-            return detail::QuickFlat{plane.f, plane.df, 1, detail::all_within_static_range(p.point, p.normal)};
-        });
+    return detail::exact_flat_crossing(ray, p, [](const auto&) { return true; }, [&] { return detail::quick_flat(ray, p); });
 }
 
 template <class T>

@@ -60,18 +60,32 @@ inline detail::Residual<N> residual(const Triangle<T>& p, const Vec3<N>& o, cons
     return detail::plane_residual(p.a, cross(detail::lift<N>(p.b) - detail::lift<N>(p.a), detail::lift<N>(p.c) - detail::lift<N>(p.a)), o, d, t);
 }
 
+namespace detail {
+// The frame (a, b − a, c − a) in any number type, for the exact and the quick planar tests.
+template <class T>
+inline auto planar_frame(const Triangle<T>& tri)
+{
+    return [&tri](auto zero) {
+        using N = decltype(zero);
+        const Vec3<N> a = lift<N>(tri.a);
+        return PlanarFrame<N>{a, lift<N>(tri.b) - a, lift<N>(tri.c) - a};
+    };
+}
+// The quick lane's plane and trim (exact_crossings.hpp, QuickFlat).
+template <class T>
+inline QuickFlat quick_flat(const Ray<T>& ray, const Triangle<T>& tri)
+{
+    return quick_planar(ray, planar_frame(tri), true, all_within_static_range(tri.a, tri.b, tri.c));
+}
+}  // namespace detail
+
 // Accurate: exact decisions, correctly rounded t (detail/exact_crossings.hpp).
 template <class T>
 inline Crossings<T> crossings(accurate_policy, const Ray<T>& ray, const Triangle<T>& tri)
 {
-    const auto edges = [&](auto zero) {
-        using N = decltype(zero);
-        const Vec3<N> a = detail::lift<N>(tri.a);
-        return detail::PlanarFrame<N>{a, detail::lift<N>(tri.b) - a, detail::lift<N>(tri.c) - a};
-    };
     return detail::exact_flat_crossing(
-        ray, tri, [&](const auto& plane) { return detail::exact_planar_inside(ray, edges, -plane.sign_b(), true); },
-        [&] { return detail::quick_planar(ray, edges, true, detail::all_within_static_range(tri.a, tri.b, tri.c)); });
+        ray, tri, [&](const auto& plane) { return detail::exact_planar_inside(ray, detail::planar_frame(tri), -plane.sign_b(), true); },
+        [&] { return detail::quick_flat(ray, tri); });
 }
 
 template <class T>
