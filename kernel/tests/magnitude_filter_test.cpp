@@ -263,6 +263,38 @@ void expect_double_lane_agrees(const char* what, const Ray<double>& r, const Pri
     }
 }
 
+// A ray through a point exactly on a triangle's or parallelogram's edge, or on a disk's rim: the
+// trim's exact value is 0 (inside) with nonzero magnitude, which no filter can decide. The lane
+// must decline, never report a miss, and accurate finds the hit at t = 2.
+template <class T>
+void expect_lane_declines_on_the_boundary()
+{
+    const Vec3<T> a{T(0.25), T(0.125), T(0.25)}, d{T(0.125), T(0.25), T(-1)};
+    const Vec3<T> on_edge{T(0.75), T(0.125), T(0.25)};  // on the edge from a along x
+    const Ray<T> r{on_edge - T(2) * d, d};
+    const Triangle<T> tri{a, a + Vec3<T>{T(1), T(0), T(0)}, a + Vec3<T>{T(0), T(1), T(0.5)}};
+    const Parallelogram<T> quad{a, {T(1), T(0), T(0)}, {T(0), T(1), T(0.5)}};
+    const Disk<T> disk{a, {T(0), T(0), T(1)}, T(0.5)};
+    const auto check = [&](const char* what, const auto& prim) {
+        using Prim = std::decay_t<decltype(prim)>;
+        const auto lane = detail::quick_flat_crossing(r, [&] { return detail::quick_flat(r, prim); },
+                                                      detail::PartCoefficients<Prim>{&prim, &r, Part::surface});
+        EXPECT_FALSE(lane.has_value()) << what;
+        const Crossings<T> c = crossings(accurate, r, prim);
+        ASSERT_EQ(c.count, 1) << what;
+        EXPECT_EQ(c.item[0].t, T(2)) << what;
+    };
+    check("triangle", tri);
+    check("parallelogram", quad);
+    check("disk", disk);
+}
+
+TEST(MagnitudeFilter, FlatQuickLaneDeclinesOnTheBoundary)
+{
+    expect_lane_declines_on_the_boundary<float>();
+    expect_lane_declines_on_the_boundary<double>();
+}
+
 TEST(MagnitudeFilter, FlatQuickLaneInDoubleAgreesWithTheExactPath)
 {
     std::mt19937_64 rng(0xD0B1E);

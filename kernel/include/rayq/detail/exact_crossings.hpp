@@ -835,6 +835,9 @@ RAYQ_FLATTEN inline std::optional<Crossings<T>> quick_flat_crossing(const Ray<T>
     if (!plane.in_range || plane.f.d > 6 || plane.df.d > 6) return std::nullopt;
     const int slope = certain_sign(plane.df);
     if (slope == 0) return std::nullopt;
+    // A certain miss of the trim needs no t (most rays that reach a flat primitive's plane miss it;
+    // a double t costs a Newton step).
+    if (plane.inside < 0) return Crossings<T>{};
     std::optional<T> t;
     if constexpr (std::is_same_v<T, float>) t = rounded_between_midpoints<float>(quotient(-bounded(plane.f), bounded(plane.df)));
     else t = newton_rounded<T>(coef, 0, 0, -plane.f.v / plane.df.v);
@@ -843,7 +846,7 @@ RAYQ_FLATTEN inline std::optional<Crossings<T>> quick_flat_crossing(const Ray<T>
     Crossings<T> out;
     if (!(ray.tmin < *t && *t < ray.tmax)) return out;
     if (plane.inside == 0) return std::nullopt;
-    if (plane.inside > 0) out.add(*t, Part::surface, slope < 0, true);  // F decreasing along the ray: entering
+    out.add(*t, Part::surface, slope < 0, true);  // F decreasing along the ray: entering
     return out;
 }
 
