@@ -128,18 +128,10 @@ RAYQ_INLINE std::optional<std::array<Bounded<W>, 2>> root_intervals(const Bounde
     return std::array<B, 2>{r0, r1};
 }
 
-// The T nearest to a root known to lie in [v − e, v + e] (W at least as precise as T), when that
-// interval lies strictly between the midpoints around it: then it is the correctly rounded root.
-// For float roots computed in double the interval is ~2^-50 of the root against float's 2^-24
-// spacing, so this decides nearly every root.
-template <class T, class W>
-RAYQ_INLINE std::optional<T> rounded_between_midpoints(const Bounded<W>& root)
+// The midpoints between t and its two neighbours in T, exact in W (W has at least one more bit).
+template <class W, class T>
+RAYQ_INLINE std::pair<W, W> midpoints_around(T t)
 {
-    const W margin = W(1) - W(2) * unit_roundoff<W>;
-    const T t = static_cast<T>(root.v);
-    if (!std::isfinite(t) || t == T(0) || !std::isfinite(root.e)) return std::nullopt;
-    // Midpoints between t and its neighbours are exact in W; the root must lie strictly between them.
-    W below, above;
     if constexpr (std::is_same_v<T, float> && std::is_same_v<W, double>) {
         // Half the spacing from t's exponent bits (the hot case, inline and without branches on
         // the neighbours): 2^(E − 24) away from zero, and half that toward zero when |t| is a
@@ -153,13 +145,23 @@ RAYQ_INLINE std::optional<T> rounded_between_midpoints(const Bounded<W>& root)
             const double away = double(power) * 0x1p-24;
             const double toward = (bits & 0x007fffffu) == 0 && exponent > 0x00800000u ? away * 0.5 : away;  // FLT_MIN's lower neighbour is as close as its upper
             const bool positive = t > 0.0f;
-            below = double(t) - (positive ? toward : away), above = double(t) + (positive ? away : toward);
-        } else {
-            below = (W(next_down(t)) + W(t)) / W(2), above = (W(t) + W(next_up(t))) / W(2);
+            return {double(t) - (positive ? toward : away), double(t) + (positive ? away : toward)};
         }
-    } else {
-        below = (W(next_down(t)) + W(t)) / W(2), above = (W(t) + W(next_up(t))) / W(2);
     }
+    return {(W(next_down(t)) + W(t)) / W(2), (W(t) + W(next_up(t))) / W(2)};
+}
+
+// The T nearest to a root known to lie in [v − e, v + e] (W at least as precise as T), when that
+// interval lies strictly between the midpoints around it: then it is the correctly rounded root.
+// For float roots computed in double the interval is ~2^-50 of the root against float's 2^-24
+// spacing, so this decides nearly every root.
+template <class T, class W>
+RAYQ_INLINE std::optional<T> rounded_between_midpoints(const Bounded<W>& root)
+{
+    const W margin = W(1) - W(2) * unit_roundoff<W>;
+    const T t = static_cast<T>(root.v);
+    if (!std::isfinite(t) || t == T(0) || !std::isfinite(root.e)) return std::nullopt;
+    const auto [below, above] = midpoints_around<W>(t);
     if ((root.v - below) * margin > root.e && (above - root.v) * margin > root.e) return t;
     return std::nullopt;
 }
