@@ -89,7 +89,7 @@ struct SceneStore {
         constexpr std::size_t direct_up_to = 2;
         if constexpr (filtered<Policy>)
             if (items.size() > direct_up_to) return scan_filtered<Policy>(ray, visit);
-        for (std::size_t i = 0; i < items.size(); ++i)
+        for (std::size_t i = 0, n = items.size(); i < n; ++i)
             if (valid[i] && visit(i)) return true;
         return false;
     }
@@ -98,7 +98,7 @@ struct SceneStore {
     static constexpr bool filtered = sphere || batch::bound_filter_exact_v<Policy, Prim>;
 
     template <class Policy, class Visit>
-    bool scan_filtered(const Ray<T>& ray, Visit& visit) const
+    RAYQ_NOINLINE bool scan_filtered(const Ray<T>& ray, Visit& visit) const
     {
         using Filter = std::conditional_t<sphere, batch::SphereFilterRay<T>, batch::BoundFilterRay<T>>;
         const Filter f(ray);
@@ -122,7 +122,7 @@ struct SceneStore {
     RAYQ_INLINE bool closest(Policy policy, Ray<T>& ray, std::optional<Crossing<T>>& best, std::size_t& index) const
     {
         bool found = false;
-        scan<Policy>(ray, [&](std::size_t i) {
+        scan<Policy>(ray, [&](std::size_t i) RAYQ_INLINE_LAMBDA {
             const std::optional<Crossing<T>> c = first_crossing_in_window(policy, ray, items[i]);
             if (c && (!best || c->t < best->t)) {
                 best = c;
@@ -138,7 +138,7 @@ struct SceneStore {
     template <class Policy>
     RAYQ_INLINE bool any(Policy policy, const Ray<T>& ray) const
     {
-        return scan<Policy>(ray, [&](std::size_t i) { return first_crossing_in_window(policy, ray, items[i]).has_value(); });
+        return scan<Policy>(ray, [&](std::size_t i) RAYQ_INLINE_LAMBDA { return first_crossing_in_window(policy, ray, items[i]).has_value(); });
     }
 
 };
@@ -272,7 +272,7 @@ template <class Policy, class... Prims, std::enable_if_t<is_policy_v<Policy>, in
 inline bool occluded(Policy policy, const Ray<typename Scene<Prims...>::scalar_type>& ray, const Scene<Prims...>& scene)
 {
     if (!usable(ray)) return false;
-    return std::apply([&](const auto&... store) { return (store.any(policy, ray) || ...); }, scene.stores());
+    return std::apply([&](const auto&... store) RAYQ_INLINE_LAMBDA { return (store.any(policy, ray) || ...); }, scene.stores());
 }
 
 template <class... Prims>

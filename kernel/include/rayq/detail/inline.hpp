@@ -7,10 +7,16 @@
 #if defined(__GNUC__) || defined(__clang__)
 #define RAYQ_INLINE inline __attribute__((always_inline))
 #define RAYQ_FLATTEN __attribute__((flatten))
+#define RAYQ_INLINE_LAMBDA __attribute__((always_inline))
+#define RAYQ_NOINLINE __attribute__((noinline))
 #elif defined(_MSC_VER)
 #define RAYQ_INLINE __forceinline
 #define RAYQ_FLATTEN
+#define RAYQ_INLINE_LAMBDA
+#define RAYQ_NOINLINE __declspec(noinline)
 #else
 #define RAYQ_INLINE inline
 #define RAYQ_FLATTEN
+#define RAYQ_INLINE_LAMBDA
+#define RAYQ_NOINLINE
 #endif
