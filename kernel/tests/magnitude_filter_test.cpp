@@ -319,7 +319,7 @@ void expect_axial_lane_agrees()
 {
     std::mt19937_64 rng(0xA71A);
     std::uniform_real_distribution<double> u(-1, 1), lg(-3, 3);
-    int rays = 0, answered = 0, crossings_seen = 0, caps_seen = 0;
+    int rays = 0, answered = 0, crossings_seen = 0, caps_seen = 0, asked[2] = {0, 0}, decided[2] = {0, 0};
     for (int i = 0; i < 16000; ++i) {
         const double scale = i % 4 == 3 ? std::ldexp(1.0, int(60 * u(rng))) : std::pow(10.0, lg(rng));
         const auto point = [&](double s) { return Vec3<T>{T(s * u(rng)), T(s * u(rng)), T(s * u(rng))}; };
@@ -332,11 +332,12 @@ void expect_axial_lane_agrees()
         if (i % 4 == 1) r.tmin = T(std::abs(u(rng))), r.tmax = T(1 + std::abs(u(rng)));
         const auto check = [&](const auto& prim, detail::CapEnds ends, const char* what) {
             const T reach = detail::reach_of(r, prim);
+            const int type = what[1] == 'y' ? 0 : 1;
             for (const int limit : {1, 2}) {
-                ++rays;
+                ++rays, ++asked[type];
                 const auto quick = detail::quick_curved_crossings(r, prim, true, prim.caps == Caps::both, ends, limit);
                 if (!quick) continue;
-                ++answered;
+                ++answered, ++decided[type];
                 const auto exact = detail::exact_curved_crossings_in_unit(r, prim, true, prim.caps == Caps::both, ends, limit, reach);
                 ASSERT_EQ(quick->count, exact.count) << what << ' ' << i << " limit " << limit;
                 for (int k = 0; k < exact.count; ++k) {
@@ -351,9 +352,12 @@ void expect_axial_lane_agrees()
         check(Cylinder<T>{p0, p1, r0, caps}, detail::CapEnds{true, true}, "cylinder");
         check(Cone<T>{p0, r0, p1, r1, caps}, detail::CapEnds{r0 > T(0), r1 > T(0)}, "cone");
     }
-    // Cylinders are answered ~98% of the time; cones ~85%: their coefficients cancel (magnitudes
-    // 10²–10³ times the values), and about one root in six needs the exact path's Newton step.
-    EXPECT_GT(answered, rays * 85 / 100);
+    // The lane answers nearly every ray, cones included (99.8% of float cylinders, 99.7% of
+    // cones). Their coefficients cancel (magnitudes 10²–10³ times the values); while the
+    // discriminant's bound came from the magnitudes too, float roots' intervals were often wider
+    // than half an ulp and only 97% of cylinders and 83% of cones were answered.
+    EXPECT_GT(decided[0], asked[0] * 99 / 100) << "cylinders";
+    EXPECT_GT(decided[1], asked[1] * 99 / 100) << "cones";
     EXPECT_GT(crossings_seen, rays / 8);
     EXPECT_GT(caps_seen, crossings_seen / 10);
 }

@@ -555,8 +555,16 @@ public:
         if (!(r.a.d <= 6 && r.f.d <= 6 && r.df.d <= 7 && moderate(r.a) && moderate(r.df) && moderate(r.f))) undecided = true;
         a_ = sign_of(r.a);
         if (a_.sign != 0) {
-            disc_ = r.df * r.df - M{4.0} * r.a * r.f;
-            sign_disc_ = sign_of(disc_);
+            // The discriminant by running error bounds on the filter's coefficients (pbrt-v4
+            // "Managing Rounding Error"): its bound scales with |b|, |a|, |c| rather than with
+            // their magnitudes. For rays passing close by a cylinder, the ones a scene's
+            // bounding-sphere filter keeps, m(b)² + 4·m(a)·m(c) reached ~10^8 times b² − 4ac, the
+            // roots' intervals grew wider than half a float ulp, and the lane declined half of them.
+            disc_ = bounded(r.df) * bounded(r.df) - Bounded<double>{4.0} * bounded(r.a) * bounded(r.f);
+            // Certainly zero when every monomial of b² and of a·c vanishes.
+            if (r.df.m == 0.0 && (r.a.m == 0.0 || r.f.m == 0.0)) sign_disc_ = {0, true};
+            else if (const int s = certain_sign(disc_)) sign_disc_ = {s, true};
+            else sign_disc_ = {0, false};
         }
     }
 
@@ -575,7 +583,7 @@ public:
                 std::optional<float> t[2];
                 if (a_.sign == 0) {
                     if (sign_b() != 0) t[0] = t[1] = rounded_between_midpoints<float>(quotient(-bounded(r_.f), bounded(r_.df)));
-                } else if (const auto roots = root_intervals(bounded(r_.a), bounded(r_.df), bounded(r_.f), bounded(disc_))) {
+                } else if (const auto roots = root_intervals(bounded(r_.a), bounded(r_.df), bounded(r_.f), disc_)) {
                     t[0] = rounded_between_midpoints<float>((*roots)[0]), t[1] = rounded_between_midpoints<float>((*roots)[1]);
                 }
                 if (!t[0] || !t[1]) *undecided_ = true;
@@ -601,7 +609,7 @@ public:
                 const Sign b = sign_of(r_.df);
                 if (b.known && b.sign != 0) iv_[0] = iv_[1] = quotient(-bounded(r_.f), bounded(r_.df)), has_iv_ = true;
             } else if (a_.known && sign_disc_.known && sign_disc_.sign > 0) {
-                if (const auto roots = root_intervals(bounded(r_.a), bounded(r_.df), bounded(r_.f), bounded(disc_)))
+                if (const auto roots = root_intervals(bounded(r_.a), bounded(r_.df), bounded(r_.f), disc_))
                     iv_[0] = (*roots)[0], iv_[1] = (*roots)[1], has_iv_ = true;
             }
         }
@@ -645,7 +653,7 @@ private:
     };
     std::conditional_t<std::is_same_v<T, float>, Unused, Coef> coef_;
     Residual<M> r_;
-    M disc_;
+    Bounded<double> disc_{0.0};
     Sign a_, sign_disc_{0, true};
     bool* undecided_;
     mutable bool rounded_ = false, done_[2] = {false, false}, intervals_ = false, has_iv_ = false;
