@@ -352,12 +352,13 @@ void expect_axial_lane_agrees()
         check(Cylinder<T>{p0, p1, r0, caps}, detail::CapEnds{true, true}, "cylinder");
         check(Cone<T>{p0, r0, p1, r1, caps}, detail::CapEnds{r0 > T(0), r1 > T(0)}, "cone");
     }
-    // The lane answers nearly every ray, cones included (99.8% of float cylinders, 99.7% of
-    // cones). Their coefficients cancel (magnitudes 10²–10³ times the values); while the
-    // discriminant's bound came from the magnitudes too, float roots' intervals were often wider
-    // than half an ulp and only 97% of cylinders and 83% of cones were answered.
-    EXPECT_GT(decided[0], asked[0] * 99 / 100) << "cylinders";
-    EXPECT_GT(decided[1], asked[1] * 99 / 100) << "cones";
+    // The lane answers nearly every ray, cones included (every float ray here; double 99.93%).
+    // Their coefficients cancel (magnitudes up to 10^6 times the values). While the
+    // discriminant's bound came from the magnitudes, float roots' intervals were often wider
+    // than half an ulp: 97% of cylinders and 83% of cones were answered; with its own running
+    // bound, 99.8% and 99.7%; with the second try on running bounds, all.
+    EXPECT_GT(decided[0], asked[0] * 999 / 1000) << "cylinders";
+    EXPECT_GT(decided[1], asked[1] * 999 / 1000) << "cones";
     EXPECT_GT(crossings_seen, rays / 8);
     EXPECT_GT(caps_seen, crossings_seen / 10);
 }
