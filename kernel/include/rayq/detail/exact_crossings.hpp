@@ -538,21 +538,25 @@ inline Crossings<float> float_crossings_in_double(const Ray<float>& ray, const P
 // rounded by one certified double-word Newton step from the filter's estimate (newton_rounded).
 // Whatever cannot be decided sets the shared `undecided` flag, and the lane's answer is then
 // discarded. `coef` is the part's residual along the ray (PartCoefficients).
-template <class T, class Coef>
+template <class T, class Coef, class F = Magnitude<double>>
 class QuickQuadratic {
-    using M = Magnitude<double>;
+    static constexpr bool static_filter = is_magnitude<F>::value;
 
 public:
-    QuickQuadratic(const Coef& coef, bool& undecided) : coef_(coef), r_(coef(M{0.0, 0.0, 0, 0, 0})), undecided_(&undecided)
+    QuickQuadratic(const Coef& coef, bool& undecided) : coef_(coef), r_(coef(t_zero())), undecided_(&undecided)
     {
         // Every product of nonzero magnitudes must stay normal (magnitude.hpp): the coefficients
         // have at most six input factors per monomial (b also the constant 2; double inputs are
         // within 2^±64, quick_solid_crossings) and, for the
         // discriminant's products and root_intervals' running-error steps, magnitudes within
         // 2^±400 or exactly zero. (An infinite or NaN input fails here too.)
-        const auto moderate = [](const M& x) { return x.m == 0.0 || (x.m >= 0x1p-400 && x.m <= 0x1p400); };
-        const Residual<M>& r = r_;
-        if (!(r.a.d <= 6 && r.f.d <= 6 && r.df.d <= 7 && moderate(r.a) && moderate(r.df) && moderate(r.f))) undecided = true;
+        // (Running error bounds, the second try, need no such guarantee: they cover underflow,
+        // and an overflow leaves a bound that decides nothing.)
+        const Residual<F>& r = r_;
+        if constexpr (static_filter) {
+            const auto moderate = [](const F& x) { return x.m == 0.0 || (x.m >= 0x1p-400 && x.m <= 0x1p400); };
+            if (!(r.a.d <= 6 && r.f.d <= 6 && r.df.d <= 7 && moderate(r.a) && moderate(r.df) && moderate(r.f))) undecided = true;
+        }
         a_ = sign_of(r.a);
         if (a_.sign != 0) {
             // The discriminant by running error bounds on the filter's coefficients (pbrt-v4
@@ -562,7 +566,7 @@ public:
             // roots' intervals grew wider than half a float ulp, and the lane declined half of them.
             disc_ = bounded(r.df) * bounded(r.df) - Bounded<double>{4.0} * bounded(r.a) * bounded(r.f);
             // Certainly zero when every monomial of b² and of a·c vanishes.
-            if (r.df.m == 0.0 && (r.a.m == 0.0 || r.f.m == 0.0)) sign_disc_ = {0, true};
+            if (vanishes(r.df) && (vanishes(r.a) || vanishes(r.f))) sign_disc_ = {0, true};
             else if (const int s = certain_sign(disc_)) sign_disc_ = {s, true};
             else sign_disc_ = {0, false};
         }
@@ -585,10 +589,6 @@ public:
                     if (sign_b() != 0) t[0] = t[1] = rounded_between_midpoints<float>(quotient(-bounded(r_.f), bounded(r_.df)));
                 } else if (const auto roots = root_intervals(bounded(r_.a), bounded(r_.df), bounded(r_.f), disc_)) {
                     t[0] = rounded_between_midpoints<float>((*roots)[0]), t[1] = rounded_between_midpoints<float>((*roots)[1]);
-                }
-                if ((!t[0] || !t[1]) && a_.sign != 0) {
-                    const auto second = round_by_running_bounds(coef_);
-                    t[0] = second[0], t[1] = second[1];
                 }
                 if (!t[0] || !t[1]) *undecided_ = true;
                 root_[0] = t[0].value_or(0.0f), root_[1] = t[1].value_or(0.0f);
@@ -622,23 +622,6 @@ public:
     }
 
 private:
-    // A second try at both float roots, from the coefficients evaluated again with running error
-    // bounds (pbrt-v4 "Managing Rounding Error"), whose bounds follow the intermediate values
-    // where the filter's follow the monomials' magnitudes. A cone's coefficients cancel to
-    // 10^-5–10^-6 of their magnitudes, and for rays passing close by the filter's intervals
-    // were wider than half an ulp (6% of float cones aimed near their surface; with running
-    // bounds, 0.002%). Out of line: the common case does not pay for its code.
-    // (Static, taking the residual by value: a call on `this` made the whole quadratic live in
-    // memory, +28 instructions per float sphere ray on the common path.)
-    RAYQ_NOINLINE static std::array<std::optional<float>, 2> round_by_running_bounds(Coef coef)
-    {
-        using BD = Bounded<double>;
-        const Residual<BD> r = coef(BD{0.0});
-        const auto roots = root_intervals(r.a, r.df, r.f, r.df * r.df - BD{4.0} * r.a * r.f);
-        if (!roots) return {};
-        return {rounded_between_midpoints<float>((*roots)[0]), rounded_between_midpoints<float>((*roots)[1])};
-    }
-
     std::optional<T> newton_from_estimate(int which) const
     {
         if (a_.sign == 0) return sign_b() != 0 ? newton_rounded<T>(coef_, 0, 0, -r_.f.v / r_.df.v) : std::nullopt;
@@ -654,11 +637,22 @@ private:
         int sign;
         bool known;
     };
-    // Certain when the filter's bound decides it, or zero when the magnitude is (every monomial
-    // vanishes).
-    static Sign sign_of(const M& x)
+    // t = 0, a constant rather than an input (the static filter counts input factors).
+    static F t_zero()
     {
-        if (x.m == 0.0) return {0, true};
+        if constexpr (static_filter) return F{0.0, 0.0, 0, 0, 0};
+        else return F{0.0};
+    }
+    // Certain when the filter's bound decides it, or zero when the magnitude is (every monomial
+    // vanishes; with running bounds, an exact zero).
+    static bool vanishes(const F& x)
+    {
+        if constexpr (static_filter) return x.m == 0.0;
+        else return x.v == 0.0 && x.e == 0.0;
+    }
+    static Sign sign_of(const F& x)
+    {
+        if (vanishes(x)) return {0, true};
         const int s = certain_sign(x);
         return {s, s != 0};
     }
@@ -668,8 +662,12 @@ private:
         return s.sign;
     }
 
-    Coef coef_;  // the residual again: a double's Newton steps, a float's second try
-    Residual<M> r_;
+    // Only a double's Newton steps use the residual again.
+    struct Unused {
+        explicit Unused(const Coef&) {}
+    };
+    std::conditional_t<std::is_same_v<T, float>, Unused, Coef> coef_;
+    Residual<F> r_;
     Bounded<double> disc_{0.0};
     Sign a_, sign_disc_{0, true};
     bool* undecided_;
@@ -681,11 +679,11 @@ private:
 // ExactSolid's interface for the quick lane, on QuickQuadratic parts. Its ends are compared
 // through their correctly rounded floats: two different floats order their exact ends (each lies
 // strictly between its float's midpoints); equal ones leave the comparison undecided.
-template <class Prim>
+template <class Prim, class F>
 class QuickSolid {
     using T = scalar_t<Prim>;
     using Coef = PartCoefficients<Prim>;
-    using Quadratic = QuickQuadratic<T, Coef>;
+    using Quadratic = QuickQuadratic<T, Coef, F>;
 
 public:
     QuickSolid(const Ray<T>& ray, const Prim& prim, bool axial, bool& undecided)
@@ -756,17 +754,17 @@ private:
 // answer. Its filter is the static one of magnitude.hpp (about a third of Bounded's cost), and
 // everything is inlined (flatten) so that the filter's counts fold to constants. Double inputs
 // must lie within its range (within_static_range); float ones always do.
-template <bool axial, class Prim, class T = scalar_t<Prim>>
+template <bool axial, class Prim, class F = Magnitude<double>, class T = scalar_t<Prim>>
 RAYQ_FLATTEN inline std::optional<Crossings<T>> quick_solid_crossings(const Ray<T>& ray, const Prim& prim, bool capped, CapEnds ends,
                                                                       int limit)
 {
-    if constexpr (!std::is_same_v<T, float>) {
+    if constexpr (!std::is_same_v<T, float> && is_magnitude<F>::value) {
         bool in_range = all_within_static_range(ray.origin, ray.direction);
         each_length(prim, [&](const auto& x) { in_range = in_range && within_static_range(x); });
         if (!in_range) return std::nullopt;
     }
     bool undecided = false;
-    const QuickSolid<Prim> solid(ray, prim, axial, undecided);
+    const QuickSolid<Prim, F> solid(ray, prim, axial, undecided);
     if (undecided) return std::nullopt;
     if constexpr (!axial) {
         // A sphere's side has a > 0: no crossing, or the one span between the roots. Written out,
@@ -812,12 +810,41 @@ inline std::optional<Crossings<scalar_t<Prim>>> quick_curved_crossings(const Ray
     return axial ? quick_solid_crossings<true>(ray, prim, capped, ends, limit) : quick_solid_crossings<false>(ray, prim, capped, ends, limit);
 }
 
+// The quick lane again on coefficients in running error bounds (pbrt-v4 "Managing Rounding
+// Error"), for float inputs the static filter left undecided, before the exact path. Those bounds
+// follow the intermediate values where the filter's follow the monomials' magnitudes: a cone's
+// coefficients cancel to 10^-5–10^-6 of their magnitudes, and for rays passing close by the
+// filter's root intervals were wider than half a float ulp (6% of float cones aimed near their
+// surface; 0.002% after this try). Double inputs go straight to the exact path (their lane rounds
+// by a Newton step, which interval widths do not stop). None when this lane declines too.
+template <class Prim>
+inline std::optional<Crossings<scalar_t<Prim>>> running_bound_crossings(const Ray<scalar_t<Prim>>& ray, const Prim& prim, bool axial,
+                                                                        bool capped, CapEnds ends, int limit)
+{
+    if constexpr (std::is_same_v<scalar_t<Prim>, float>) {
+        using BD = Bounded<double>;
+        return axial ? quick_solid_crossings<true, Prim, BD>(ray, prim, capped, ends, limit)
+                     : quick_solid_crossings<false, Prim, BD>(ray, prim, capped, ends, limit);
+    }
+    return std::nullopt;
+}
+
+// What the static filter's lane declined: the running bounds' lane, then the exact path. Out of
+// line, so the common case's code is as it was without the second lane.
+template <class Prim>
+RAYQ_NOINLINE Crossings<scalar_t<Prim>> declined_curved_crossings(const Ray<scalar_t<Prim>>& ray, const Prim& prim, bool axial, bool capped,
+                                                                  CapEnds ends, int limit)
+{
+    if (const auto second = running_bound_crossings(ray, prim, axial, capped, ends, limit)) return *second;
+    return exact_curved_crossings_in_unit(ray, prim, axial, capped, ends, limit, reach_of(ray, prim));
+}
+
 template <class Prim>
 inline Crossings<scalar_t<Prim>> exact_curved_crossings(const Ray<scalar_t<Prim>>& ray, const Prim& prim, bool axial, bool capped,
                                                          CapEnds ends, int limit)
 {
     if (const auto quick = quick_curved_crossings(ray, prim, axial, capped, ends, limit)) return *quick;
-    return exact_curved_crossings_in_unit(ray, prim, axial, capped, ends, limit, reach_of(ray, prim));
+    return declined_curved_crossings(ray, prim, axial, capped, ends, limit);
 }
 
 }  // namespace rayq::detail

@@ -65,6 +65,7 @@ template <class W> struct is_magnitude<Magnitude<W>> : std::true_type {};
 
 // The same as a running error bound, for arithmetic that continues in Bounded.
 template <class W> RAYQ_INLINE Bounded<W> bounded(const Magnitude<W>& x) { return {x.v, x.bound()}; }
+template <class W> RAYQ_INLINE Bounded<W> bounded(const Bounded<W>& x) { return x; }
 
 // Sign of the exact value when the bound decides it, else 0.
 template <class W> RAYQ_INLINE int certain_sign(const Magnitude<W>& x)
