@@ -264,7 +264,7 @@ bool reference_resolves(const Cone<T>& c, const test::Q3& o, const test::Q3& d, 
 // t_error contains the exact root: a violation only when the reference is certain of a root
 // outside [t − e, t + e] and F has one sign at t − e, t and t + e (no root in between either).
 template <class T, class Prim>
-void check_t_error(const Ray<T>& ray, const Prim& prim, const Hit<T>& h, const char* policy, Checked& out)
+void check_t_error(const Ray<T>& ray, const Prim& prim, const Hit<T>& h, const char* policy, Checked& out, bool known_wrong)
 {
     if (!std::isfinite(h.t_error)) return;  // uncertified: allowed (tangency, undecidable trims)
     const test::Q3 o = test::q3(ray.origin), d = test::q3(ray.direction);
@@ -293,7 +293,8 @@ void check_t_error(const Ray<T>& ray, const Prim& prim, const Hit<T>& h, const c
     }
     out.violations.push_back({"t_error.contains_exact_t", std::string(policy) + ": |t - t_exact| = " + num(to_double(dist)) +
                                                                " > t_error = " + num(h.t_error) + " (t_exact ~ " +
-                                                               num(to_double(ref.root)) + "); " + describe(h)});
+                                                               num(to_double(ref.root)) + "); " + describe(h),
+                              known_wrong});
 }
 
 template <class Policy, class Prim>
@@ -391,7 +392,7 @@ void check_policy(Policy policy, const char* name, const Ray<scalar_t<Prim>>& ra
         }
     }
 
-    if (hit) check_t_error(ray, prim, *hit, name, out);
+    if (hit) check_t_error(ray, prim, *hit, name, out, known_wrong);
 }
 
 }  // namespace detail_check
