@@ -513,6 +513,26 @@ TEST(AccurateRegression, PlaneNearDblMaxIsRounded)
     expect_rounded_root_in_any_window(r, p, 0x1.69fce58e1a94cp+1021);
 }
 
+TEST(AccurateRegression, FlatConeOfRadiusNearDblMaxIsRoundedWithItsAxialNormal)
+{
+    // A cone of radius ~DBL_MAX over an axis of 2^-11, crossed in the plane of its points at
+    // radius 0.12·r0 (axial libFuzzer harness, session 16). The hit was right all along (CGAL:
+    // 0x1.97213d9ab1f7cp+1022, 0.24 ulps off), but the fuzz harness's binary128 reference lost the
+    // axial coordinate and put the root behind the origin; and the normal was the ray's reversed
+    // direction, 90° off, because the cone's slope (r1 − r0)/L overflowed.
+    const Ray<double> r{{-0x1.e39416d81cfe1p+1022, 0x1.2e6e4e199b7b4p+1021, 0x1.2e6e4e199b7b4p+1019},
+                        {0x1.0c056bff09418p+0, -0x1.4f3dec8a01a6dp-2, -0x1.4f3dec8a01a6dp-4}};
+    const Cone<double> c{{0.0, 0x1p-13, 0x1p-11}, 0x1.fffffffffffffp+1022, {0.0, 0x1p-12, 0.0}, 0.0, Caps::none};
+    expect_rounded_root_in_any_window(r, c, 0x1.97213d9ab1f7cp+1022);
+    const auto h = intersect(accurate, r, c);
+    ASSERT_TRUE(h);
+    // CGAL's normal: the axis (0, 1, -4)/√17, outward (the ray enters).
+    EXPECT_TRUE(h->front_face);
+    EXPECT_NEAR(h->normal.x, 0.0, 1e-15);
+    EXPECT_NEAR(h->normal.y, 1 / std::sqrt(17.0), 1e-15);
+    EXPECT_NEAR(h->normal.z, -4 / std::sqrt(17.0), 1e-15);
+}
+
 // Lines that pass these primitives (CGAL: miss) got hits outside them.
 template <class Prim>
 void expect_missed(const Ray<scalar_t<Prim>>& r, const Prim& prim)

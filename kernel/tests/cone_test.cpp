@@ -97,5 +97,23 @@ TYPED_TEST(ConeTest, ParallelToGeneratorIsLinear)
     EXPECT_FALSE(h->front_face);
 }
 
+// A cone whose slope (r1 − r0)/L overflows T: its normal is still the gradient's direction, nearly
+// the axis, and finite (it was NaN, and the hit record fell back to the ray's reversed direction).
+template <class T>
+void expect_flat_cone_normal(T r0, T length)
+{
+    const Cone<T> flat{v3<T>(0, 0, 0), r0, v3<T>(0, 0, length), T(0), Caps::none};
+    const Vec3<T> n = detail::unit(outward_normal(flat, v3<T>(0.5, 0, 0), Part::surface));
+    EXPECT_NEAR(n.x, T(0), T(1e-6));
+    EXPECT_NEAR(n.y, T(0), T(1e-6));
+    EXPECT_NEAR(n.z, T(1), T(1e-6));
+}
+
+TEST(ConeNormal, FiniteWhereTheSlopeOverflows)
+{
+    expect_flat_cone_normal(1e30f, 1e-10f);
+    expect_flat_cone_normal(0x1p1000, 0x1p-100);
+}
+
 }  // namespace
 }  // namespace rayq::test

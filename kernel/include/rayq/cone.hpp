@@ -2,6 +2,8 @@
 // (an apex). Open, or closed by disks at its non-zero ends (cap0 at p0, cap1 at p1).
 #pragma once
 
+#include <algorithm>
+
 #include "cylinder.hpp"  // Caps
 #include "batch/filter_core.hpp"
 #include "detail/bounded.hpp"
@@ -112,12 +114,16 @@ inline Vec3<T> outward_normal(const Cone<T>& cone, const Vec3<T>& p, Part part)
     if (part == Part::cap0) return -axis;
     if (part == Part::cap1) return axis;
     // ∇(|q⊥|² − r(h)²) on the surface is r·(q̂⊥ − (r1 − r0)/L · Â): radial out, tilted by the slope.
-    // At the apex q⊥ = 0 and the axial term alone remains, so there is no 0/0.
+    // At the apex q⊥ = 0 and the axial term alone remains, so there is no 0/0. Taken times L and
+    // divided by max(L, |r1 − r0|), both weights are <= 1: the slope itself overflows on a flat cone
+    // (radius near DBL_MAX over an axis of 2^-11; found by the axial libFuzzer harness, whose hit then
+    // got the ray's direction for a normal, 90° off).
     const Vec3<T> q = p - cone.p0;
-    const T len = length(axis);
+    const T len = length(axis), rise = cone.r1 - cone.r0;
+    const T larger = std::max(len, std::abs(rise));
     const Vec3<T> along = axis / len;
     const Vec3<T> radial = detail::unit(q - dot(q, along) * along);
-    return radial - ((cone.r1 - cone.r0) / len) * along;
+    return (len / larger) * radial - (rise / larger) * along;
 }
 
 }  // namespace rayq

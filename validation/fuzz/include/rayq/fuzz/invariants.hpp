@@ -209,8 +209,11 @@ Reference reference_root(const Prim& prim, const test::Q3& o, const test::Q3& d,
 //  * the radius is below 2^-80 of the offsets whose cross product with the axis gives the
 //    distance from it (|q|, q = o + t·d − p0): that cross product then cancels beyond binary128's
 //    113 bits, and its rounding, squared, outweighs F (a cylinder of radius 2^-239 seen from
-//    2^-4 away got a reference root twice CGAL's).
-// Both found by the axial libFuzzer harness once accurate ran everywhere; accurate matched CGAL.
+//    2^-4 away got a reference root twice CGAL's);
+//  * the axis is below 2^-80 of |q|: q's rounding then moves the point along the axis by more than
+//    the axis is long, and a cone's radius there with it (a double cone of radius ~DBL_MAX and axis
+//    2^-11 seen from 2^1022 got a reference root of -6.3e305, CGAL's is 7.1e307, as accurate's).
+// All found by the axial libFuzzer harness once accurate ran everywhere; accurate matched CGAL.
 // Flat primitives whose normal is a cross product of edges fail alike when
 //  * an edge b − a is not exact in binary128: a triangle with a vertex at (−0.82, −2^133, −2^141)
 //    and two near 2^173 got a reference root 9e-13 from CGAL's (flat libFuzzer harness);
@@ -232,7 +235,9 @@ bool axial_reference_resolves(const Vec3<T>& p0, const Vec3<T>& p1, T radius, co
     if (!exact_in_quad(test::q3(p1), test::q3(p0))) return false;
     const test::Q3 q = o - test::q3(p0) + t * d;
     const quad reach = test::qabs(q.x) + test::qabs(q.y) + test::qabs(q.z);
-    return test::qabs(quad(radius)) >= reach * quad(0x1p-80);
+    const test::Q3 axis = test::q3(p1) - test::q3(p0);
+    const quad axis_size = test::qabs(axis.x) + test::qabs(axis.y) + test::qabs(axis.z);
+    return test::qabs(quad(radius)) >= reach * quad(0x1p-80) && axis_size >= reach * quad(0x1p-80);
 }
 inline bool cross_resolves(const test::Q3& e0, const test::Q3& e1)
 {

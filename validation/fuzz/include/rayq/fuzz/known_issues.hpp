@@ -44,7 +44,7 @@ bool accurate_may_hang(const Ray<scalar_t<Prim>>&, const Prim&)
 }
 
 // Inputs where rayq::accurate is known to disagree with the exact oracle (the fuzz invariants and
-// the edge-case test's oracle sample leave them out): one, below. Add a class here, with its reproducer
+// the edge-case test's oracle sample leave them out): none. Add a class here, with its reproducer
 // under fixtures/fuzz/open/, when a finding cannot be fixed at once.
 // Fixed (their reproducers replayed from fixtures/fuzz/<harness>/crash-* and kept as kernel tests
 // AccurateRegression.*): inputs whose exact products left double's exponent range — a sphere of
@@ -54,14 +54,13 @@ bool accurate_may_hang(const Ray<scalar_t<Prim>>&, const Prim&)
 // 2^±64 (2^512 or 0.96 beside a subnormal, 2 beside 2^-902); planes with coordinates near DBL_MAX,
 // rounded 7–9 ulps off. Exact decisions now turn to Dyadic numbers (kernel detail/dyadic.hpp)
 // where an expansion leaves the range.
-// Open (session 16, axial libFuzzer harness; reproducer fixtures/fuzz/open/axial/crash-057a8890…):
-// a double cone whose radius is within 2^3 of DBL_MAX, seen from 2^1022 away, where accurate
-// reports a hit at t ≈ 7.1e307 and the binary128 reference puts the root at ≈ −6.3e305 (products of
-// its lengths overflow double before the exact path's change of units can apply).
+// Not a kernel defect: a double cone of radius ~DBL_MAX over an axis of 2^-11, seen from 2^1022
+// (listed here in session 16), where accurate's hit was correctly rounded (CGAL) and the binary128
+// reference had lost the axial coordinate; the reference now declines such inputs
+// (axial_reference_resolves), and the cone's normal, which overflowed there, is fixed.
 template <class Prim>
-bool accurate_known_wrong(const Ray<scalar_t<Prim>>&, const Prim& prim)
+bool accurate_known_wrong(const Ray<scalar_t<Prim>>&, const Prim&)
 {
-    if constexpr (std::is_same_v<Prim, Cone<double>>) return std::max(std::abs(prim.r0), std::abs(prim.r1)) >= 0x1p1020;
     return false;
 }
 
