@@ -248,6 +248,26 @@ inline std::uint32_t bound_candidates(const BoundFilterRay<T>& f, T tmin, T tmax
     return L::bits(keep) & s.live(g);
 }
 
+// Whether the ray's line certainly passes every primitive of group g, by the window tests' line
+// test alone (what a scan skips groups by; bound_candidates then gives them no lane). Never for
+// Test = line, whose plane test may keep a lane the line test drops.
+template <BoundTest Test, class T>
+RAYQ_INLINE bool line_passes_group(const BoundFilterRay<T>& f, const BoundSoA<T>& s, std::size_t g)
+{
+    if constexpr (Test == BoundTest::line) {
+        return false;
+    } else {
+        using L = rayq::detail::Lanes<T>;
+        using P = typename L::pack;
+        const std::size_t i = g * L::width;
+        const P ux = P(f.origin.x) - L::load(&s.cx[i]), uy = P(f.origin.y) - L::load(&s.cy[i]), uz = P(f.origin.z) - L::load(&s.cz[i]);
+        const P uu = ux * ux + uy * uy + uz * uz;
+        const P ud = ux * P(f.unit_dir.x) + uy * P(f.unit_dir.y) + uz * P(f.unit_dir.z);
+        const P reach = L::load(&s.reach[i]);
+        return rayq::detail::all_lanes(passes_line<T, Test>(uu, uu - ud * ud, reach * reach, P(f.abs_slack)) && uu < L::load(&s.far[i]));
+    }
+}
+
 // ---- many rays against one primitive -------------------------------------------------------------
 
 // Rays, and what the filter needs of each as structure of arrays in whole lane groups (padding

@@ -203,6 +203,18 @@ struct WindowPacks {
 //           the plane test, no window test.
 enum class BoundTest { exact, point, line };
 
+// The line test of the window tests (Test ≠ line), on |u|², ℓ² and reach²: true where the ray's
+// line certainly passes the bound. exact: the filter's own rounding; point: that, the
+// discriminant's error near tangency and the tested point's rounding, all within Kε·(|u|² + R²)
+// in units of ℓ² (header).
+template <class T, BoundTest Test, class P>
+RAYQ_INLINE auto passes_line(const P& uu, const P& ll, const P& rr, const P& abs_slack)
+{
+    using S = BoundSlack<T>;
+    constexpr T k_line = Test == BoundTest::exact ? S::k_eps : T(2) * S::k_eps;
+    return ll > P(T(1) + k_line) * rr + P(k_line) * uu + abs_slack;
+}
+
 // A planar primitive's plane_weight() as packs.
 template <class P>
 struct PlanePacks {
@@ -235,11 +247,7 @@ RAYQ_INLINE auto bound_keep(const P& ux, const P& uy, const P& uz, const P& dx, 
         }
         return keep;
     } else {
-        // exact: the filter's own rounding; point: that, the discriminant's error near tangency
-        // and the tested point's rounding, all within Kε·(|u|² + R²) in units of ℓ² (header).
-        constexpr T k_line = Test == BoundTest::exact ? S::k_eps : T(2) * S::k_eps;
-        const P limit = P(T(1) + k_line) * rr + P(k_line) * uu + abs_slack;
-        const auto line_far = ll > limit;
+        const auto line_far = passes_line<T, Test>(uu, ll, rr, abs_slack);
         if (rayq::detail::all_lanes(line_far && !out_of_range)) return out_of_range;  // most lane groups of a scene
         const P tc = -ud * window->inv_len;
         const P rad = reach * window->inv_len;

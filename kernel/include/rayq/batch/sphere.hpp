@@ -49,17 +49,18 @@ struct SphereSoA {
     }
 };
 
-// Bit i set: sphere i of lane group g may be hit in (tmin, tmax) by some policy; clear: it is
-// certainly missed by every policy. NaN and overflow keep a lane (the scalar path decides).
+// The line test of sphere_candidates: which lanes of group g the ray's line certainly passes by.
+template <class P>
+struct SphereLine {
+    P r, ud;
+    decltype(P() < P()) far;
+};
 template <class T>
-inline std::uint32_t sphere_candidates(const SphereFilterRay<T>& f, T tmin, T tmax, const SphereSoA<T>& s, std::size_t g)
+RAYQ_INLINE SphereLine<typename detail::Lanes<T>::pack> sphere_line(const SphereFilterRay<T>& f, const SphereSoA<T>& s, std::size_t g)
 {
     using L = detail::Lanes<T>;
     using P = typename L::pack;
-    constexpr T eps = std::numeric_limits<T>::epsilon();
-    const T k_eps = T(SphereFilterRay<T>::k_slack) * eps;
-    const T sqrt_k_eps = std::sqrt(k_eps);
-    if (f.extreme) return s.live(g);
+    const T k_eps = T(SphereFilterRay<T>::k_slack) * std::numeric_limits<T>::epsilon();
     const std::size_t i = g * L::width;
     const P r = L::load(&s.r[i]);
     const P ux = P(f.origin.x) - L::load(&s.cx[i]);
@@ -71,7 +72,30 @@ inline std::uint32_t sphere_candidates(const SphereFilterRay<T>& f, T tmin, T tm
     // ℓ² = |u|² − (u·d̂)²: the squared distance from the center to the line. Computed with
     // cancellation, its error (≤ 8ε|u|²) is inside the slack; clarity beats precision here.
     const P ll = uu - ud * ud;
-    const auto line_far = ll > rr + P(k_eps) * (uu + rr) + P(f.line_slack_abs);
+    return {r, ud, ll > rr + P(k_eps) * (uu + rr) + P(f.line_slack_abs)};
+}
+
+// Whether the ray's line certainly passes by every sphere of group g (what a scan skips by).
+template <class T>
+RAYQ_INLINE bool line_passes_group(const SphereFilterRay<T>& f, const SphereSoA<T>& s, std::size_t g)
+{
+    return !f.extreme && detail::all_lanes(sphere_line(f, s, g).far);
+}
+
+// Bit i set: sphere i of lane group g may be hit in (tmin, tmax) by some policy; clear: it is
+// certainly missed by every policy. NaN and overflow keep a lane (the scalar path decides).
+template <class T>
+inline std::uint32_t sphere_candidates(const SphereFilterRay<T>& f, T tmin, T tmax, const SphereSoA<T>& s, std::size_t g)
+{
+    using L = detail::Lanes<T>;
+    using P = typename L::pack;
+    constexpr T eps = std::numeric_limits<T>::epsilon();
+    const T k_eps = T(SphereFilterRay<T>::k_slack) * eps;
+    const T sqrt_k_eps = std::sqrt(k_eps);
+    if (f.extreme) return s.live(g);
+    const SphereLine<P> l = sphere_line(f, s, g);
+    const P r = l.r, ud = l.ud;
+    const auto line_far = l.far;
     if (detail::all_lanes(line_far)) return 0;  // the common case in a scene: no lane near the line
     // The crossings lie in tc ± r/|d|; a policy's t errs by at most √(Kε)·(|tc| + 2r/|d|) (the
     // square root of the discriminant's error near tangency: Ray Tracing Gems ch. 7).
