@@ -232,7 +232,7 @@ inline constexpr BoundTest bound_test_v = std::is_same_v<Policy, accurate_policy
 // Bit i set: primitive i of lane group g may be hit by `Policy` in (tmin, tmax); clear: certainly
 // missed. Test: bound_test_v<Policy, the stored primitive type>.
 template <class Policy, BoundTest Test, class T>
-inline std::uint32_t bound_candidates(const BoundFilterRay<T>& f, T tmin, T tmax, const BoundSoA<T>& s, std::size_t g)
+RAYQ_INLINE std::uint32_t bound_candidates(const BoundFilterRay<T>& f, T tmin, T tmax, const BoundSoA<T>& s, std::size_t g)
 {
     using L = rayq::detail::Lanes<T>;
     using P = typename L::pack;

@@ -85,7 +85,7 @@ RAYQ_INLINE bool line_passes_group(const SphereFilterRay<T>& f, const SphereSoA<
 // Bit i set: sphere i of lane group g may be hit in (tmin, tmax) by some policy; clear: it is
 // certainly missed by every policy. NaN and overflow keep a lane (the scalar path decides).
 template <class T>
-inline std::uint32_t sphere_candidates(const SphereFilterRay<T>& f, T tmin, T tmax, const SphereSoA<T>& s, std::size_t g)
+RAYQ_INLINE std::uint32_t sphere_candidates(const SphereFilterRay<T>& f, T tmin, T tmax, const SphereSoA<T>& s, std::size_t g)
 {
     using L = detail::Lanes<T>;
     using P = typename L::pack;
