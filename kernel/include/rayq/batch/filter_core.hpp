@@ -87,6 +87,7 @@ struct SphereFilterRay {
     // with n ≤ 10 (pbrt-v4 "Managing Rounding Error" §6.8.1 bounds; Ray Tracing Gems ch. 7 for the
     // forms): K = 256 unit roundoffs covers it with a wide margin, plus the filter's own ≤ 8ε·|u|².
     static constexpr int k_slack = 256;
+    static constexpr T k_eps() { return T(k_slack) * std::numeric_limits<T>::epsilon(); }
     static inline const T sqrt_k_min = std::sqrt(T(k_slack) * std::numeric_limits<T>::min()) * T(1.001);
     // The rounding argument holds while the policies' products stay finite: at most
     // |d|²·(|u|² + r²) (fast's b² and a·c, stable's |d|²·(r² − ℓ²)), within a factor 4. Where they
