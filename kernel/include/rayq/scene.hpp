@@ -110,9 +110,11 @@ struct SceneStore {
         // skipped by that test alone (line_passes_group) in a loop of its own, which calls no
         // visit, so the compiler keeps the ray's broadcast lanes in registers across it; in one
         // loop with the visit it reloaded them per group (callgrind per ray, 1,000 float spheres,
-        // fast: AVX2 5,032 -> 3,088 instructions, SSE2 15,801 -> 10,850). The group tests are
-        // forced inline: GCC called them out of line under AVX-512, which halved the rays/s of a
-        // 16-sphere scene.
+        // fast: AVX2 5,032 -> 3,088 instructions, SSE2 15,801 -> 10,850; 2,712 and 9,878 with the
+        // stored reach², ccc313a). A kept group's line test runs again inside candidates(): the
+        // price of a loop that carries nothing, measured as a win at 16 and 1,000 primitives. The
+        // group tests are forced inline: GCC called them out of line under AVX-512, which halved
+        // the rays/s of a 16-sphere scene.
         const std::size_t groups = soa.groups();
         const auto passed = [&](std::size_t g) RAYQ_INLINE_LAMBDA {
             if constexpr (sphere) return batch::line_passes_group(f, soa, g);

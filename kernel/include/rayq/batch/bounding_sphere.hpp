@@ -260,11 +260,9 @@ RAYQ_INLINE bool line_passes_group(const BoundFilterRay<T>& f, const BoundSoA<T>
         using L = rayq::detail::Lanes<T>;
         using P = typename L::pack;
         const std::size_t i = g * L::width;
-        const P ux = P(f.origin.x) - L::load(&s.cx[i]), uy = P(f.origin.y) - L::load(&s.cy[i]), uz = P(f.origin.z) - L::load(&s.cz[i]);
-        const P uu = ux * ux + uy * uy + uz * uz;
-        const P ud = ux * P(f.unit_dir.x) + uy * P(f.unit_dir.y) + uz * P(f.unit_dir.z);
-        const P reach = L::load(&s.reach[i]);
-        return rayq::detail::all_lanes(passes_line<T, Test>(uu, uu - ud * ud, reach * reach, P(f.abs_slack)) && uu < L::load(&s.far[i]));
+        const auto line = line_terms(P(f.origin.x) - L::load(&s.cx[i]), P(f.origin.y) - L::load(&s.cy[i]), P(f.origin.z) - L::load(&s.cz[i]),
+                                     P(f.unit_dir.x), P(f.unit_dir.y), P(f.unit_dir.z), L::load(&s.reach[i]));
+        return rayq::detail::all_lanes(passes_line<T, Test>(line.uu, line.ll, line.rr, P(f.abs_slack)) && line.uu < L::load(&s.far[i]));
     }
 }
 

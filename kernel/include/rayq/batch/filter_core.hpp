@@ -204,6 +204,22 @@ struct WindowPacks {
 //           the plane test, no window test.
 enum class BoundTest { exact, point, line };
 
+// What every test of a bounding sphere starts from, given the center offset u = o − c, the unit
+// direction d and the widened radius: |u|², u·d, the squared distance ℓ² = |u|² − (u·d)² from the
+// center to the line, and reach².
+template <class P>
+struct LineTerms {
+    P uu, ud, ll, rr;
+};
+
+template <class P>
+RAYQ_INLINE LineTerms<P> line_terms(const P& ux, const P& uy, const P& uz, const P& dx, const P& dy, const P& dz, const P& reach)
+{
+    const P uu = ux * ux + uy * uy + uz * uz;
+    const P ud = ux * dx + uy * dy + uz * dz;
+    return {uu, ud, uu - ud * ud, reach * reach};
+}
+
 // The line test of the window tests (Test ≠ line), on |u|², ℓ² and reach²: true where the ray's
 // line certainly passes the bound. exact: the filter's own rounding; point: that, the
 // discriminant's error near tangency and the tested point's rounding, all within Kε·(|u|² + R²)
@@ -234,10 +250,7 @@ RAYQ_INLINE auto bound_keep(const P& ux, const P& uy, const P& uz, const P& dx, 
                             const P& abs_slack, const PlanePacks<P>* plane, const WindowPacks<P>* window)
 {
     using S = BoundSlack<T>;
-    const P uu = ux * ux + uy * uy + uz * uz;
-    const P ud = ux * dx + uy * dy + uz * dz;
-    const P ll = uu - ud * ud;  // squared distance from the center to the line
-    const P rr = reach * reach;
+    const auto [uu, ud, ll, rr] = line_terms(ux, uy, uz, dx, dy, dz, reach);
     const auto out_of_range = !(uu < far);  // kept whatever the tests say
     if constexpr (Test == BoundTest::line) {
         const P limit = P(S::widen + S::relative) * rr + P(S::relative) * uu + abs_slack;
