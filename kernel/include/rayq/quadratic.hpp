@@ -47,10 +47,13 @@ struct Span {
 
 // Where F(t) < 0, as at most two disjoint spans in ascending order (two when a < 0 and
 // the ray passes both nappes of a cone or both sheets of a hyperboloid).
+// Only the first `count` spans are set (see Crossings for why the rest stay unset).
 template <class T>
 struct Spans {
     int count = 0;
-    Span<T> span[2]{};
+    union {
+        Span<T> span[2];
+    };
 };
 
 namespace detail {
