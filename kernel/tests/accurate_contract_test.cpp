@@ -533,6 +533,23 @@ TEST(AccurateRegression, FlatConeOfRadiusNearDblMaxIsRoundedWithItsAxialNormal)
     EXPECT_NEAR(h->normal.z, -4 / std::sqrt(17.0), 1e-15);
 }
 
+TEST(AccurateRegression, PointBesideAConeApexGetsTheNormalThere)
+{
+    // A ray from 1e-28 beside the apex (p1) of a cone of size 0.02, nearly along a generator
+    // (axial libFuzzer harness, session 18). CGAL: t = 0x1.1f359905716e5p-97, accurate's; the
+    // binary128 reference of the fuzz harness could not resolve F there and put the root at
+    // -2.9e-28. The normal, taken from p − p0, was 56° off CGAL's (0.47221, 0.75505, 0.45488).
+    const Ray<double> r{{0.0, 0x0.0000000000001p-1022, 0x1.753d29fb649bdp-94}, {-0x1.3cp+1, -0x1.3b48p+1, -0x1.df5cp+1}, 0.0,
+                        std::numeric_limits<double>::infinity()};
+    const Cone<double> c{{0.0, 0x1.8000000000004p-9, 0x1.24p-6}, 0x1.9cp-7, {0.0, 0.0, 0.0}, 0.0, Caps::none};
+    const auto h = intersect(accurate, r, c);
+    ASSERT_TRUE(h);
+    EXPECT_EQ(h->t, 0x1.1f359905716e5p-97);
+    EXPECT_NEAR(h->normal.x, 0.4722124497154529, 1e-9);
+    EXPECT_NEAR(h->normal.y, 0.75504771681974492, 1e-9);
+    EXPECT_NEAR(h->normal.z, 0.45488278452698239, 1e-9);
+}
+
 // Lines that pass these primitives (CGAL: miss) got hits outside them.
 template <class Prim>
 void expect_missed(const Ray<scalar_t<Prim>>& r, const Prim& prim)

@@ -121,7 +121,7 @@ inline Vec3<T> outward_normal(const Cone<T>& cone, const Vec3<T>& p, Part part)
     // divided by max(L, |r1 − r0|), both weights are <= 1: the slope itself overflows on a flat cone
     // (radius near DBL_MAX over an axis of 2^-11; found by the axial libFuzzer harness, whose hit then
     // got the ray's direction for a normal, 90° off).
-    const Vec3<T> q = p - cone.p0;
+    const Vec3<T> q = detail::offset_from_nearer_end(p, cone.p0, cone.p1);
     const T len = length(axis), rise = cone.r1 - cone.r0;
     const T larger = std::max(len, std::abs(rise));
     const Vec3<T> along = axis / len;

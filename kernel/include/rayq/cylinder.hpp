@@ -109,7 +109,7 @@ inline Vec3<T> outward_normal(const Cylinder<T>& cyl, const Vec3<T>& p, Part par
     const Vec3<T> axis = cyl.p1 - cyl.p0;
     if (part == Part::cap0) return -axis;
     if (part == Part::cap1) return axis;
-    const Vec3<T> q = p - cyl.p0;
+    const Vec3<T> q = detail::offset_from_nearer_end(p, cyl.p0, cyl.p1);
     return q - (dot(q, axis) / dot(axis, axis)) * axis;  // the radial component
 }
 

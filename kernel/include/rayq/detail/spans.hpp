@@ -37,6 +37,18 @@ inline Margins<N> axial_trim_margins(const Vec3<N>& p0, const Vec3<N>& p1, N r0,
     return m;
 }
 
+// p − p0 or p − p1, whichever is shorter: an axial normal's radial part, q − (q·Â)Â, errs by
+// ~ε·|q|, which near an end (a cone's apex above all) would swamp it. Both give the same radial
+// part exactly (p1 − p0 is along the axis). A point 1e-28 from the apex of a cone of size 0.02
+// got a normal 56° off from p − p0 (axial libFuzzer harness; CGAL's normal).
+template <class T>
+inline Vec3<T> offset_from_nearer_end(const Vec3<T>& p, const Vec3<T>& p0, const Vec3<T>& p1)
+{
+    const Vec3<T> q0 = p - p0, q1 = p - p1;
+    const auto size = [](const Vec3<T>& v) { return std::abs(v.x) + std::abs(v.y) + std::abs(v.z); };
+    return size(q1) < size(q0) ? q1 : q0;
+}
+
 // Every finite end of every span is a crossing of the surface.
 template <class T>
 inline Crossings<T> crossings_of(const Spans<T>& spans, Part part = Part::surface)

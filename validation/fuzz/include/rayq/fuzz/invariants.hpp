@@ -213,6 +213,10 @@ Reference reference_root(const Prim& prim, const test::Q3& o, const test::Q3& d,
 //  * the axis is below 2^-80 of |q|: q's rounding then moves the point along the axis by more than
 //    the axis is long, and a cone's radius there with it (a double cone of radius ~DBL_MAX and axis
 //    2^-11 seen from 2^1022 got a reference root of -6.3e305, CGAL's is 7.1e307, as accurate's).
+//  * a cone's point lies within 2^-40 of the apex's offset (|q| + |k·A|, apex p0 + k·A with
+//    k = r0/(r0 − r1)): F is quadratic there, its terms are ~|q|² and cancel to ~dist², and the
+//    error estimate, first order in |∇F| → 0, misses that rounding (a ray from 1e-28 beside the
+//    apex of a cone of size 0.02 got a reference root of -2.9e-28; CGAL's is 7.1e-30, accurate's).
 // All found by the axial libFuzzer harness once accurate ran everywhere; accurate matched CGAL.
 // Flat primitives whose normal is a cross product of edges fail alike when
 //  * an edge b − a is not exact in binary128: a triangle with a vertex at (−0.82, −2^133, −2^141)
@@ -263,7 +267,11 @@ bool reference_resolves(const Cylinder<T>& c, const test::Q3& o, const test::Q3&
 template <class T>
 bool reference_resolves(const Cone<T>& c, const test::Q3& o, const test::Q3& d, quad t)
 {
-    return axial_reference_resolves(c.p0, c.p1, std::max(std::abs(c.r0), std::abs(c.r1)), o, d, t);
+    if (!axial_reference_resolves(c.p0, c.p1, std::max(std::abs(c.r0), std::abs(c.r1)), o, d, t)) return false;
+    if (c.r0 == c.r1) return true;  // no apex
+    const auto size = [](const test::Q3& v) { return test::qabs(v.x) + test::qabs(v.y) + test::qabs(v.z); };
+    const test::Q3 q = o - test::q3(c.p0) + t * d, apex_offset = (quad(c.r0) / (quad(c.r0) - quad(c.r1))) * (test::q3(c.p1) - test::q3(c.p0));
+    return size(q - apex_offset) >= (size(q) + size(apex_offset)) * quad(0x1p-40);
 }
 
 // t_error contains the exact root: a violation only when the reference is certain of a root
