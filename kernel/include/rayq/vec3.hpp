@@ -41,4 +41,11 @@ template <class T> RAYQ_INLINE bool isfinite(const Vec3<T>& a)
     return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z);
 }
 
+namespace detail {
+
+// |v|₁: a cheap bound on a vector's size (the batch filters' bound on coordinates, the nearer end).
+template <class T> RAYQ_INLINE T norm1(const Vec3<T>& v) { return std::abs(v.x) + std::abs(v.y) + std::abs(v.z); }
+
+}  // namespace detail
+
 }  // namespace rayq

@@ -52,9 +52,7 @@ inline double norm2(const Vec3<double>& v) { return std::sqrt(dot(v, v)); }
 
 namespace rayq::batch {
 
-// |v|₁, the filters' bound on a point's coordinates.
-template <class T>
-inline T norm1(const Vec3<T>& v) { return std::abs(v.x) + std::abs(v.y) + std::abs(v.z); }
+using rayq::detail::norm1;  // |v|₁, the filters' bound on a point's coordinates
 
 // What both filters need of one ray, computed once per ray.
 template <class T>

@@ -45,8 +45,7 @@ template <class T>
 inline Vec3<T> offset_from_nearer_end(const Vec3<T>& p, const Vec3<T>& p0, const Vec3<T>& p1)
 {
     const Vec3<T> q0 = p - p0, q1 = p - p1;
-    const auto size = [](const Vec3<T>& v) { return std::abs(v.x) + std::abs(v.y) + std::abs(v.z); };
-    return size(q1) < size(q0) ? q1 : q0;
+    return norm1(q1) < norm1(q0) ? q1 : q0;
 }
 
 // Every finite end of every span is a crossing of the surface.

@@ -150,6 +150,9 @@ void check_hit_record(const Ray<T>& ray, const Hit<T>& h, const std::string& whe
         fail("hit.point_error_nonnegative", "a point_error component is negative or NaN");
 }
 
+// |v|₁ in binary128: the size the reference's resolution tests compare.
+inline quad size1(const test::Q3& v) { return test::qabs(v.x) + test::qabs(v.y) + test::qabs(v.z); }
+
 // Where the exact root near the kernel's t is, by binary128 Newton on the reference's implicit
 // function F, and whether that is certain: F has opposite signs at r − δ and r + δ, each larger
 // than F's evaluation error there, so a root lies in [r − δ, r + δ] whatever the rounding. The
@@ -179,7 +182,7 @@ Reference reference_root(const Prim& prim, const test::Q3& o, const test::Q3& d,
     Reference r;
     r.root = t;
     // |∇F| at the root, by central differences in space (the origin moved, t fixed).
-    const quad hs = (scale + qabs(t) * (qabs(d.x) + qabs(d.y) + qabs(d.z))) * quad(1e-15);
+    const quad hs = (scale + qabs(t) * size1(d)) * quad(1e-15);
     if (!(hs > 0)) return r;
     quad grad = 0;
     for (int axis = 0; axis < 3; ++axis) {
@@ -187,7 +190,7 @@ Reference reference_root(const Prim& prim, const test::Q3& o, const test::Q3& d,
         (axis == 0 ? step.x : axis == 1 ? step.y : step.z) = hs;
         grad += qabs(implicit(prim, o + step, d, t, part) - implicit(prim, o - step, d, t, part)) / (2 * hs);
     }
-    const quad eval_error = std::max(scale, qabs(t) * (qabs(d.x) + qabs(d.y) + qabs(d.z))) * grad * quad(1e-30);
+    const quad eval_error = std::max(scale, qabs(t) * size1(d)) * grad * quad(1e-30);
     const quad d_max = std::max({qabs(d.x), qabs(d.y), qabs(d.z)});
     for (const quad delta : {qabs(t) * quad(1e-22), qabs(t) * quad(1e-19), scale / d_max * quad(1e-26), scale / d_max * quad(1e-22)}) {
         if (!(delta > 0)) continue;
@@ -238,15 +241,14 @@ bool axial_reference_resolves(const Vec3<T>& p0, const Vec3<T>& p1, T radius, co
 {
     if (!exact_in_quad(test::q3(p1), test::q3(p0))) return false;
     const test::Q3 q = o - test::q3(p0) + t * d;
-    const quad reach = test::qabs(q.x) + test::qabs(q.y) + test::qabs(q.z);
+    const quad reach = size1(q);
     const test::Q3 axis = test::q3(p1) - test::q3(p0);
-    const quad axis_size = test::qabs(axis.x) + test::qabs(axis.y) + test::qabs(axis.z);
+    const quad axis_size = size1(axis);
     return test::qabs(quad(radius)) >= reach * quad(0x1p-80) && axis_size >= reach * quad(0x1p-80);
 }
 inline bool cross_resolves(const test::Q3& e0, const test::Q3& e1)
 {
-    const auto size = [](const test::Q3& v) { return test::qabs(v.x) + test::qabs(v.y) + test::qabs(v.z); };
-    return size(test::qcross(e0, e1)) >= size(e0) * size(e1) * quad(0x1p-80);
+    return size1(test::qcross(e0, e1)) >= size1(e0) * size1(e1) * quad(0x1p-80);
 }
 template <class T>
 bool reference_resolves(const Triangle<T>& p, const test::Q3&, const test::Q3&, quad)
@@ -269,9 +271,8 @@ bool reference_resolves(const Cone<T>& c, const test::Q3& o, const test::Q3& d, 
 {
     if (!axial_reference_resolves(c.p0, c.p1, std::max(std::abs(c.r0), std::abs(c.r1)), o, d, t)) return false;
     if (c.r0 == c.r1) return true;  // no apex
-    const auto size = [](const test::Q3& v) { return test::qabs(v.x) + test::qabs(v.y) + test::qabs(v.z); };
     const test::Q3 q = o - test::q3(c.p0) + t * d, apex_offset = (quad(c.r0) / (quad(c.r0) - quad(c.r1))) * (test::q3(c.p1) - test::q3(c.p0));
-    return size(q - apex_offset) >= (size(q) + size(apex_offset)) * quad(0x1p-40);
+    return size1(q - apex_offset) >= (size1(q) + size1(apex_offset)) * quad(0x1p-40);
 }
 
 // t_error contains the exact root: a violation only when the reference is certain of a root
