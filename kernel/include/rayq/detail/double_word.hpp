@@ -49,9 +49,8 @@ template <class T> RAYQ_INLINE DoubleWord<T> operator*(const DoubleWord<T>& a, c
     const T lo = p.lo + (a.hi * b.lo + a.lo * b.hi);
     const T ma = a.magnitude(), mb = b.magnitude();
     // Where products underflow, Two-Product's error term and the cross products each lose up to
-    // half a subnormal (absolute, not relative): 4·denorm_min covers them (Dekker's split too).
-    return renormalize(p.hi, lo,
-                       grow(ma * b.e + mb * a.e + a.e * b.e + T(8) * u2<T>() * ma * mb + T(4) * std::numeric_limits<T>::denorm_min()));
+    // half a subnormal (absolute, not relative): grow's floor covers them (Dekker's split too).
+    return renormalize(p.hi, lo, grow(ma * b.e + mb * a.e + a.e * b.e + T(8) * u2<T>() * ma * mb));
 }
 template <class T> RAYQ_INLINE DoubleWord<T>& operator+=(DoubleWord<T>& a, const DoubleWord<T>& b) { return a = a + b; }
 
