@@ -186,12 +186,15 @@ inline detail::Residual<N> residual(const Quadric<T>& q, const Vec3<N>& o, const
 {
     using B = N;
     const Vec3<B> p = o + t * d;
-    const B A{q.A}, Bc{q.B}, C{q.C}, D{q.D}, E{q.E}, F{q.F}, two{T(2)};
-    const B f = A * p.x * p.x + Bc * p.y * p.y + C * p.z * p.z + D * p.x * p.y + E * p.x * p.z + F * p.y * p.z + B{q.G} * p.x +
-                B{q.H} * p.y + B{q.I} * p.z + B{q.J};
-    const Vec3<B> grad{two * A * p.x + D * p.y + E * p.z + B{q.G}, two * Bc * p.y + D * p.x + F * p.z + B{q.H},
-                       two * C * p.z + E * p.x + F * p.y + B{q.I}};
-    const B a = A * d.x * d.x + Bc * d.y * d.y + C * d.z * d.z + D * d.x * d.y + E * d.x * d.z + F * d.y * d.z;
+    // k·x·y and k·x, exactly zero for a zero coefficient (most quadrics have some): through the
+    // products, a Bounded zero would carry grow()'s floor, whose products are subnormal. 2k is exact.
+    const auto kxy = [](T k, const B& x, const B& y) { return k == T(0) ? B{T(0)} : B{k} * x * y; };
+    const auto kx = [](T k, const B& x) { return k == T(0) ? B{T(0)} : B{k} * x; };
+    const B f = kxy(q.A, p.x, p.x) + kxy(q.B, p.y, p.y) + kxy(q.C, p.z, p.z) + kxy(q.D, p.x, p.y) + kxy(q.E, p.x, p.z) +
+                kxy(q.F, p.y, p.z) + kx(q.G, p.x) + kx(q.H, p.y) + kx(q.I, p.z) + B{q.J};
+    const Vec3<B> grad{kx(T(2) * q.A, p.x) + kx(q.D, p.y) + kx(q.E, p.z) + B{q.G}, kx(T(2) * q.B, p.y) + kx(q.D, p.x) + kx(q.F, p.z) + B{q.H},
+                       kx(T(2) * q.C, p.z) + kx(q.E, p.x) + kx(q.F, p.y) + B{q.I}};
+    const B a = kxy(q.A, d.x, d.x) + kxy(q.B, d.y, d.y) + kxy(q.C, d.z, d.z) + kxy(q.D, d.x, d.y) + kxy(q.E, d.x, d.z) + kxy(q.F, d.y, d.z);
     return {f, dot(grad, d), a};
 }
 

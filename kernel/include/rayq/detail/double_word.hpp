@@ -86,11 +86,13 @@ template <class T>
 RAYQ_INLINE Estimate<T> estimate(const DoubleWord<T>& x)
 {
     const T v = x.hi + x.lo;
-    return {v, grow(x.e + unit_roundoff<T> * std::abs(v))};
+    return {v, grow_inexact(x.e + unit_roundoff<T> * std::abs(v))};
 }
-// double -> float rounds to nearest: relative error <= u_float; grow() covers converting e.
+// double -> float rounds to nearest: relative error <= u_float; grow() covers converting e. (An
+// exact zero stays one; a tiny nonzero x.v may round to a zero v, so the bound alone cannot say.)
 RAYQ_INLINE Estimate<float> estimate(const Bounded<double>& x)
 {
+    if (exact_zero(x)) return {0.0f, 0.0f};
     const float v = static_cast<float>(x.v);
     return {v, grow(static_cast<float>(x.e) + unit_roundoff<float> * std::abs(v))};
 }

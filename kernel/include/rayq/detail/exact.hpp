@@ -223,11 +223,12 @@ inline std::optional<T> newton_rounded(const Coef& coef, int sign_a, int which, 
     if (!(d_min > T(0))) return std::nullopt;
     // The nearest root is the requested one: F' has the sign of an entry (−sign a) at the smaller root.
     if (sign_a != 0 && (dv > T(0) ? 1 : -1) * sign_a != (which == 0 ? -1 : 1)) return std::nullopt;
-    const T f_max = grow(std::abs(fv) + f_err), a_max = grow(std::abs(a.v) + a.e);
+    const T f_max = upper(fv, f_err), a_max = upper(a.v, a.e);
     // Quotients before products: grow() covers one underflow's absolute error, which a later
     // division by a small F' would magnify (a float sphere near 2^-60 was rounded 1 ulp off).
+    // A linear residual (a exactly 0: flat parts) has x = 0, without a subnormal product of floors.
     const T delta_max = grow(f_max / d_min);
-    const T x = grow(grow(T(4) * a_max * delta_max) / d_min);
+    const T x = a_max == T(0) ? T(0) : grow(grow(T(4) * a_max * delta_max) / d_min);
     if (!(x <= T(0.5))) return std::nullopt;
     const T delta = -fv / dv;
     // |δ − fv/dv| over the bounds of F and F': f_err/D + |fv/dv|·d_err/D.

@@ -648,7 +648,7 @@ private:
     static bool vanishes(const F& x)
     {
         if constexpr (static_filter) return x.m == 0.0;
-        else return x.v == 0.0 && x.e == 0.0;
+        else return exact_zero(x);
     }
     static Sign sign_of(const F& x)
     {
