@@ -23,12 +23,14 @@ template <class T>
 inline constexpr T unit_roundoff = std::numeric_limits<T>::epsilon() / 2;
 
 // Products that underflow err absolutely, by up to denorm_min/2 each: at most 4·denorm_min per
-// operation (five products in Bounded's, eight in DoubleWord's). Above the floor F = 16·min, the
-// spare ~3u of the 8u inflation covers that (4·denorm_min ≤ 3u·2·min); below it, F itself does.
+// operation (five products in Bounded's, eight in DoubleWord's). Where the inflated bound g is at
+// least F − 4·denorm_min, the spare ~3u·g of the 8u inflation covers that (3u·F = 24·denorm_min,
+// as u·min = denorm_min/2); below, the floor F = 16·min adds at least 4·denorm_min to g.
 // A floor, not an added denorm_min as before: a subnormal operand costs x86 a microcode assist
-// per instruction unless DAZ is set (rayq needs gradual underflow, so users must leave it off),
-// and accurate's hits ran 2.2–3.4× slower for it in -mavx builds (one float sphere: 26 against
-// 54 M rays/s with DAZ; the MXCSR denormal flag showed it on every hit). NaN stays NaN.
+// per instruction unless DAZ is set (rayq needs gradual underflow, so users must leave it off).
+// With the added denorm_min, -march=native builds ran accurate scenes 2–3× slower (one float
+// sphere: 26 against 51 M rays/s now) and every policy's full hit record up to 17× slower
+// (rayq-bench); the MXCSR denormal flag showed it on every hit. NaN stays NaN.
 template <class T>
 inline constexpr T bound_floor = T(16) * std::numeric_limits<T>::min();
 
