@@ -8,6 +8,7 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <type_traits>
 
 #include <rayq/rayq.hpp>
 
@@ -32,6 +33,15 @@ struct ConfigNames {
         if (std::is_same_v<typename C::Policy, stable_policy>) return t + "_stable";
         return t + "_accurate";
     }
+};
+
+// The scalar types alone, for tests whose policies vary inside the test. Named types: GoogleTest's
+// two-argument TYPED_TEST_SUITE leaves a variadic macro argument empty, which clang's -Wpedantic
+// (the sanitizer build) rejects under -Werror.
+using FloatTypes = ::testing::Types<float, double>;
+struct FloatTypeNames {
+    template <class T>
+    static std::string GetName(int) { return std::is_same_v<T, float> ? "float" : "double"; }
 };
 
 template <class T>

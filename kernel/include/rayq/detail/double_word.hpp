@@ -39,7 +39,9 @@ template <class T> RAYQ_INLINE DoubleWord<T> operator+(const DoubleWord<T>& a, c
 {
     const Pair<T> s = two_sum(a.hi, b.hi);
     const T lo = s.lo + (a.lo + b.lo);
-    return renormalize(s.hi, lo, grow(a.e + b.e + T(4) * u2<T>() * (a.magnitude() + b.magnitude())));
+    // With an exact zero operand the sum is the other one, exactly (it is normalized).
+    const T ma = a.magnitude(), mb = b.magnitude();
+    return renormalize(s.hi, lo, grow_exact_operands(a.e + b.e + T(4) * u2<T>() * (ma + mb), ma + a.e, mb + b.e));
 }
 template <class T> RAYQ_INLINE DoubleWord<T> operator-(const DoubleWord<T>& a) { return {-a.hi, -a.lo, a.e}; }
 template <class T> RAYQ_INLINE DoubleWord<T> operator-(const DoubleWord<T>& a, const DoubleWord<T>& b) { return a + (-b); }
@@ -50,7 +52,8 @@ template <class T> RAYQ_INLINE DoubleWord<T> operator*(const DoubleWord<T>& a, c
     const T ma = a.magnitude(), mb = b.magnitude();
     // Where products underflow, Two-Product's error term and the cross products each lose up to
     // half a subnormal (absolute, not relative): grow's floor covers them (Dekker's split too).
-    return renormalize(p.hi, lo, grow(ma * b.e + mb * a.e + a.e * b.e + T(8) * u2<T>() * ma * mb));
+    const T size_a = ma + a.e;  // ma·e_b + e_a·e_b as size_a·e_b, as Bounded's product does
+    return renormalize(p.hi, lo, grow_exact_operands(size_a * b.e + mb * a.e + T(8) * u2<T>() * ma * mb, size_a, mb + b.e));
 }
 template <class T> RAYQ_INLINE DoubleWord<T>& operator+=(DoubleWord<T>& a, const DoubleWord<T>& b) { return a = a + b; }
 

@@ -9,14 +9,17 @@
 #define RAYQ_FLATTEN __attribute__((flatten))
 #define RAYQ_INLINE_LAMBDA __attribute__((always_inline))
 #define RAYQ_NOINLINE __attribute__((noinline))
+#define RAYQ_UNLIKELY(condition) __builtin_expect(!!(condition), 0)
 #elif defined(_MSC_VER)
 #define RAYQ_INLINE __forceinline
 #define RAYQ_FLATTEN
 #define RAYQ_INLINE_LAMBDA
 #define RAYQ_NOINLINE __declspec(noinline)
+#define RAYQ_UNLIKELY(condition) (condition)
 #else
 #define RAYQ_INLINE inline
 #define RAYQ_FLATTEN
 #define RAYQ_INLINE_LAMBDA
 #define RAYQ_NOINLINE
+#define RAYQ_UNLIKELY(condition) (condition)
 #endif
