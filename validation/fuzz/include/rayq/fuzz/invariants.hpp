@@ -236,11 +236,11 @@ inline bool exact_in_quad(const test::Q3& a, const test::Q3& b)
 }
 template <class Prim>
 bool reference_resolves(const Prim&, const test::Q3&, const test::Q3&, quad) { return true; }
+// q = o + t·d − p0, the point's offset from the axis' start.
 template <class T>
-bool axial_reference_resolves(const Vec3<T>& p0, const Vec3<T>& p1, T radius, const test::Q3& o, const test::Q3& d, quad t)
+bool axial_reference_resolves(const Vec3<T>& p0, const Vec3<T>& p1, T radius, const test::Q3& q)
 {
     if (!exact_in_quad(test::q3(p1), test::q3(p0))) return false;
-    const test::Q3 q = o - test::q3(p0) + t * d;
     const quad reach = size1(q);
     const test::Q3 axis = test::q3(p1) - test::q3(p0);
     const quad axis_size = size1(axis);
@@ -264,14 +264,15 @@ bool reference_resolves(const Parallelogram<T>& p, const test::Q3&, const test::
 template <class T>
 bool reference_resolves(const Cylinder<T>& c, const test::Q3& o, const test::Q3& d, quad t)
 {
-    return axial_reference_resolves(c.p0, c.p1, c.radius, o, d, t);
+    return axial_reference_resolves(c.p0, c.p1, c.radius, o - test::q3(c.p0) + t * d);
 }
 template <class T>
 bool reference_resolves(const Cone<T>& c, const test::Q3& o, const test::Q3& d, quad t)
 {
-    if (!axial_reference_resolves(c.p0, c.p1, std::max(std::abs(c.r0), std::abs(c.r1)), o, d, t)) return false;
+    const test::Q3 q = o - test::q3(c.p0) + t * d;
+    if (!axial_reference_resolves(c.p0, c.p1, std::max(std::abs(c.r0), std::abs(c.r1)), q)) return false;
     if (c.r0 == c.r1) return true;  // no apex
-    const test::Q3 q = o - test::q3(c.p0) + t * d, apex_offset = (quad(c.r0) / (quad(c.r0) - quad(c.r1))) * (test::q3(c.p1) - test::q3(c.p0));
+    const test::Q3 apex_offset = (quad(c.r0) / (quad(c.r0) - quad(c.r1))) * (test::q3(c.p1) - test::q3(c.p0));
     return size1(q - apex_offset) >= (size1(q) + size1(apex_offset)) * quad(0x1p-40);
 }
 
