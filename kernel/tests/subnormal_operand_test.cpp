@@ -56,7 +56,7 @@ std::vector<Ray<T>> rays(std::uint64_t seed)
     return out;
 }
 
-// Rays along +x, −y, +z, … (the sign alternating), from 4 units out, through random points
+// Rays along +x, +y, +z, then −x, −y, −z, and so on, from 4 units out, through random points
 // within 1.5 of the center: every direction has two exact zero components.
 template <class T>
 std::vector<Ray<T>> axis_rays(std::uint64_t seed)
