@@ -24,17 +24,6 @@ struct Config {
 using AllConfigs = ::testing::Types<Config<float, fast_policy>, Config<float, stable_policy>, Config<float, accurate_policy>,
                                     Config<double, fast_policy>, Config<double, stable_policy>, Config<double, accurate_policy>>;
 
-struct ConfigNames {
-    template <class C>
-    static std::string GetName(int)
-    {
-        std::string t = std::is_same_v<typename C::T, float> ? "float" : "double";
-        if (std::is_same_v<typename C::Policy, fast_policy>) return t + "_fast";
-        if (std::is_same_v<typename C::Policy, stable_policy>) return t + "_stable";
-        return t + "_accurate";
-    }
-};
-
 // The scalar types alone, for tests whose policies vary inside the test. Named types: GoogleTest's
 // two-argument TYPED_TEST_SUITE leaves a variadic macro argument empty, which clang's -Wpedantic
 // (the sanitizer build) rejects under -Werror.
@@ -42,6 +31,17 @@ using FloatTypes = ::testing::Types<float, double>;
 struct FloatTypeNames {
     template <class T>
     static std::string GetName(int) { return std::is_same_v<T, float> ? "float" : "double"; }
+};
+
+struct ConfigNames {
+    template <class C>
+    static std::string GetName(int)
+    {
+        const std::string t = FloatTypeNames::GetName<typename C::T>(0);
+        if (std::is_same_v<typename C::Policy, fast_policy>) return t + "_fast";
+        if (std::is_same_v<typename C::Policy, stable_policy>) return t + "_stable";
+        return t + "_accurate";
+    }
 };
 
 template <class T>

@@ -186,8 +186,9 @@ inline detail::Residual<N> residual(const Quadric<T>& q, const Vec3<N>& o, const
 {
     using B = N;
     const Vec3<B> p = o + t * d;
-    // k·x·y and k·x, exactly zero for a zero coefficient (most quadrics have some): through the
-    // products, a Bounded zero would carry grow()'s floor, whose products are subnormal. 2k is exact.
+    // k·x·y and k·x, skipped for a zero coefficient (most quadrics have some): the exact zero the
+    // Bounded product now gives as well (grow_exact_operands), without its work, and a zero term
+    // even where a coordinate of p overflows. 2k is exact.
     const auto kxy = [](T k, const B& x, const B& y) { return k == T(0) ? B{T(0)} : B{k} * x * y; };
     const auto kx = [](T k, const B& x) { return k == T(0) ? B{T(0)} : B{k} * x; };
     const B f = kxy(q.A, p.x, p.x) + kxy(q.B, p.y, p.y) + kxy(q.C, p.z, p.z) + kxy(q.D, p.x, p.y) + kxy(q.E, p.x, p.z) +

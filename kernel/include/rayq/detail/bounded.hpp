@@ -60,7 +60,9 @@ template <class T>
 RAYQ_INLINE T grow_exact_operands(T bound, T size_a, T size_b)
 {
     // A branch, rarely taken on ordinary rays, costs them least: the same test as a select cost
-    // the full hit record 5-30% (rayq-bench, SSE2), the branch 0-10%.
+    // the full hit record up to 31% (rayq-bench, SSE2); the branch, with the products' bounds
+    // reusing the sizes, nothing on average (geometric mean 0.999) and at most 8% (double
+    // frustum, accurate).
     if (RAYQ_UNLIKELY(bound == T(0)) && std::min(size_a, size_b) == T(0)) return T(0);
     return grow(bound);
 }
@@ -83,8 +85,9 @@ template <class T> RAYQ_INLINE Bounded<T> operator-(Bounded<T> a, Bounded<T> b)
 template <class T> RAYQ_INLINE Bounded<T> operator-(Bounded<T> a) { return {-a.v, a.e}; }
 template <class T> RAYQ_INLINE Bounded<T> operator*(Bounded<T> a, Bounded<T> b)
 {
-    // |a·b − v| <= |a|·e_b + |b|·e_a + e_a·e_b + u·|v|, the first and third terms as (|a| + e_a)·e_b: a's size,
-    // which the exact-zero test needs anyway (at most four roundings on any path, as before).
+    // |a·b − v| <= |a|·e_b + |b|·e_a + e_a·e_b + u·|v|, the first and third terms as
+    // (|a| + e_a)·e_b: a's size, which the exact-zero test needs anyway (at most four roundings
+    // on any path, as before).
     const T v = a.v * b.v, size_a = std::abs(a.v) + a.e, size_b = std::abs(b.v) + b.e;
     return {v, grow_exact_operands(size_a * b.e + std::abs(b.v) * a.e + unit_roundoff<T> * std::abs(v), size_a, size_b)};
 }
