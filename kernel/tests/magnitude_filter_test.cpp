@@ -8,6 +8,7 @@
 #include <random>
 
 #include <rayq/detail/expansion.hpp>
+#include <rayq/detail/double_word.hpp>
 #include <rayq/detail/magnitude.hpp>
 
 namespace rayq::test {
@@ -69,6 +70,73 @@ TEST(MagnitudeFilter, BoundHoldsOnSphereCoefficientsAndDiscriminant)
     // The filter is useful: it decides most discriminants, but not the near-tangent ones.
     EXPECT_GT(decided, checked / 2);
     EXPECT_LT(decided, checked);
+}
+
+// A double with a random sign and 53-bit significand, exponent in [lo, hi]; 0 one time in `zeros`.
+double random_double(std::mt19937_64& rng, int lo, int hi, int zeros = 0)
+{
+    if (zeros > 0 && rng() % zeros == 0) return 0.0;
+    std::uniform_int_distribution<int> e(lo, hi);
+    const double x = std::ldexp(1.0 + double(rng() >> 12) * 0x1p-52, e(rng));
+    return rng() & 1 ? -x : x;
+}
+
+// |exact − (hi + lo)| <= bound, decided exactly.
+bool bound_holds(const detail::StaticDoubleWord<double>& x, const Expansion<double>& exact)
+{
+    const Expansion<double> diff = Expansion<double>(x.hi) + Expansion<double>(x.lo) - exact;
+    const Expansion<double> b(x.bound());
+    return (b - diff).sign() >= 0 && (b + diff).sign() >= 0;
+}
+
+// The quick lanes' Newton step evaluates F in StaticDoubleWord (quick_newton_rounded): its static
+// bound holds against exact expansions on every primitive's residual, at the edges of the range it
+// is promised (inputs and t of 0 or within 2^±64, down to 2^-64 with full significands: the grid
+// argument), at ordinary scales, and near a root (t from the exact path), where F cancels; and
+// every residual stays within the degree the argument covers (8: the cone's).
+TEST(MagnitudeFilter, StaticDoubleWordBoundHoldsOnEveryResidual)
+{
+    std::mt19937_64 rng(0x5D3);
+    int checked = 0, max_degree = 0;
+    const auto check = [&](const auto& prim, const Ray<double>& r, Part part, double t, int i) {
+        using Prim = std::decay_t<decltype(prim)>;
+        const detail::PartCoefficients<Prim> coef{&prim, &r, part};
+        const auto f = coef.at(detail::StaticDoubleWord<double>{t}).f;
+        const auto exact = coef.at(Expansion<double>{t}).f;
+        ASSERT_TRUE(exact.exact()) << i;
+        EXPECT_TRUE(bound_holds(f, exact)) << i << " part " << int(part) << " t " << t;
+        EXPECT_LE(f.d, 8) << i;
+        max_degree = std::max(max_degree, f.d);
+        ++checked;
+    };
+    for (int i = 0; i < 6000; ++i) {
+        const int lo = i % 3 == 0 ? -64 : (i % 3 == 1 ? -2 : -30), hi = i % 3 == 0 ? 63 : (i % 3 == 1 ? 2 : 30);
+        const auto x = [&] { return random_double(rng, lo, hi, 8); };
+        const auto v = [&] { return Vec3<double>{x(), x(), x()}; };
+        const Ray<double> r{v(), v()};
+        const Vec3<double> p0 = v(), p1 = v();
+        const double r0 = std::abs(x()), r1 = std::abs(x());
+        const Sphere<double> sphere{p0, r0};
+        const Cylinder<double> cylinder{p0, p1, r0, Caps::both};
+        const Cone<double> cone{p0, r0, p1, r1, Caps::both};
+        const Triangle<double> triangle{p0, p1, v()};
+        const Parallelogram<double> parallelogram{p0, p1, v()};
+        const Disk<double> disk{p0, p1, r0};
+        // t: random, and the exact path's roots, where F nearly vanishes.
+        std::vector<double> ts{x(), 0.0};
+        for (const auto& c : detail::exact_curved_crossings(r, cylinder, true, true, {true, true}, 2)) ts.push_back(c.t);
+        for (const auto& c : detail::exact_curved_crossings(r, sphere, false, false, {false, false}, 2)) ts.push_back(c.t);
+        for (const double t : ts) {
+            if (!(t == 0.0 || (std::abs(t) >= 0x1p-64 && std::abs(t) <= 0x1p64))) continue;
+            check(sphere, r, Part::surface, t, i);
+            for (const Part part : {Part::surface, Part::cap0, Part::cap1}) check(cylinder, r, part, t, i), check(cone, r, part, t, i);
+            check(triangle, r, Part::surface, t, i);
+            check(parallelogram, r, Part::surface, t, i);
+            check(disk, r, Part::surface, t, i);
+        }
+    }
+    EXPECT_GT(checked, 6000 * 2 * 10);
+    EXPECT_EQ(max_degree, 8);
 }
 
 // The quick lane, where it answers, gives the full exact path's crossings (count, t bit for bit,

@@ -5,6 +5,7 @@
 // relative to |a| + |b|, ≤ 7u² for the product; we use 4u² and 8u², then inflate as Bounded does.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -26,36 +27,104 @@ struct DoubleWord {
 };
 
 template <class T>
-RAYQ_INLINE DoubleWord<T> renormalize(T hi, T lo, T e)
-{
-    const Pair<T> s = two_sum(hi, lo);
-    return {s.hi, s.lo, e};
-}
-
-template <class T>
 RAYQ_INLINE T u2() { return unit_roundoff<T> * unit_roundoff<T>; }
+
+// The sum and product of two double words, values only (each type below bounds them its own way):
+// within 4u²·(|a| + |b|) of a + b, and within 8u²·|a|·|b| of a·b, where no product underflows.
+template <class T> RAYQ_INLINE Pair<T> double_word_sum(T a_hi, T a_lo, T b_hi, T b_lo)
+{
+    const Pair<T> s = two_sum(a_hi, b_hi);
+    return two_sum(s.hi, s.lo + (a_lo + b_lo));
+}
+template <class T> RAYQ_INLINE Pair<T> double_word_product(T a_hi, T a_lo, T b_hi, T b_lo)
+{
+    const Pair<T> p = two_product(a_hi, b_hi);
+    // |lo| <= ~3u·|p.hi| (normalized operands), so Fast2Sum renormalizes exactly (Joldes et al.'s
+    // DWTimesDW does the same); where a_hi·b_hi underflows, every term is a multiple of the
+    // smallest subnormal below 2^-1021, whose sums are exact.
+    return fast_two_sum(p.hi, p.lo + (a_hi * b_lo + a_lo * b_hi));
+}
+// The same with b a single word (b_lo = 0), without the zero term.
+template <class T> RAYQ_INLINE Pair<T> double_word_times_word(T a_hi, T a_lo, T b)
+{
+    const Pair<T> p = two_product(a_hi, b);
+    return fast_two_sum(p.hi, p.lo + a_lo * b);
+}
 
 template <class T> RAYQ_INLINE DoubleWord<T> operator+(const DoubleWord<T>& a, const DoubleWord<T>& b)
 {
-    const Pair<T> s = two_sum(a.hi, b.hi);
-    const T lo = s.lo + (a.lo + b.lo);
+    const Pair<T> s = double_word_sum(a.hi, a.lo, b.hi, b.lo);
     // With an exact zero operand the sum is the other one, exactly (it is normalized).
     const T ma = a.magnitude(), mb = b.magnitude();
-    return renormalize(s.hi, lo, grow_exact_operands(a.e + b.e + T(4) * u2<T>() * (ma + mb), ma + a.e, mb + b.e));
+    return {s.hi, s.lo, grow_exact_operands(a.e + b.e + T(4) * u2<T>() * (ma + mb), ma + a.e, mb + b.e)};
 }
 template <class T> RAYQ_INLINE DoubleWord<T> operator-(const DoubleWord<T>& a) { return {-a.hi, -a.lo, a.e}; }
 template <class T> RAYQ_INLINE DoubleWord<T> operator-(const DoubleWord<T>& a, const DoubleWord<T>& b) { return a + (-b); }
 template <class T> RAYQ_INLINE DoubleWord<T> operator*(const DoubleWord<T>& a, const DoubleWord<T>& b)
 {
-    const Pair<T> p = two_product(a.hi, b.hi);
-    const T lo = p.lo + (a.hi * b.lo + a.lo * b.hi);
+    const Pair<T> p = double_word_product(a.hi, a.lo, b.hi, b.lo);
     const T ma = a.magnitude(), mb = b.magnitude();
     // Where products underflow, Two-Product's error term and the cross products each lose up to
     // half a subnormal (absolute, not relative): grow's floor covers them (Dekker's split too).
     const T size_a = ma + a.e;  // ma·e_b + e_a·e_b as size_a·e_b, as Bounded's product does
-    return renormalize(p.hi, lo, grow_exact_operands(size_a * b.e + mb * a.e + T(8) * u2<T>() * ma * mb, size_a, mb + b.e));
+    return {p.hi, p.lo, grow_exact_operands(size_a * b.e + mb * a.e + T(8) * u2<T>() * ma * mb, size_a, mb + b.e)};
 }
 template <class T> RAYQ_INLINE DoubleWord<T>& operator+=(DoubleWord<T>& a, const DoubleWord<T>& b) { return a = a + b; }
+
+// A double word with a static error bound, as Magnitude (magnitude.hpp) is to Bounded: the value,
+// the magnitude m (the same polynomial on |inputs| with every sign +, computed in T), c and the
+// degree d, and |exact − (hi + lo)| <= (c + 2)·u²·m (bound()). About half a DoubleWord's cost: no
+// running bound. The quick lanes' Newton steps evaluate F in it (quick_newton_rounded).
+// The caller guarantees that every input is 0 or within 2^±64, and checks d <= 8. Every value is
+// then a multiple of 2^-928 (each input of 2^-116, ulp(2^-64); two_sum, two_product and rounding
+// keep a value on its operands' grid, a product on the product of theirs), so no product
+// underflows, every error-free transformation is exact and m is 0 (the value exact) or above
+// 2^-928; and below 2^600 none overflows.
+// c, after Joldes, Muller, Popescu (ACM TOMS 2017) as DoubleWord's bounds: |a| <= M_a·(1 + c_a·u²),
+//   a + b: e_a + e_b + 4u²·(|a| + |b|) <= (max(c_a, c_b) + 5)·u²·(M_a + M_b),
+//   a·b:   |a|·e_b + |b|·e_a + e_a·e_b + 8u²·|a|·|b| <= (c_a + c_b + 9)·u²·M_a·M_b,
+// each while c_a·c_b·u² is negligible (c < 2^20). m's k <= c roundings leave c·u²·M <= (c + 1)·u²·m
+// (2·c·k·u <= 1), and bound() rounds once more, within the last unit (m >= 2^-928 or 0).
+// `word`: a single word (an input, lo = 0), so that sums and products of inputs, exact as TwoSum and
+// TwoProduct (c = 0), and products by an input skip their zero terms; like c and d it is a
+// constant once inlined.
+template <class T>
+struct StaticDoubleWord {
+    T hi = T(0), lo = T(0), m = T(0);
+    int c = 0, d = 0;
+    bool word = false;
+
+    StaticDoubleWord() = default;
+    // An input (exact).
+    RAYQ_INLINE StaticDoubleWord(T x) : hi(x), m(std::abs(x)), d(1), word(true) {}  // NOLINT(google-explicit-constructor)
+    RAYQ_INLINE StaticDoubleWord(Pair<T> v, T m_, int c_, int d_, bool word_ = false)
+        : hi(v.hi), lo(v.lo), m(m_), c(c_), d(d_), word(word_)
+    {
+    }
+
+    RAYQ_INLINE T bound() const { return T(c + 2) * m * u2<T>(); }
+};
+
+template <class T> RAYQ_INLINE StaticDoubleWord<T> operator+(const StaticDoubleWord<T>& a, const StaticDoubleWord<T>& b)
+{
+    if (a.word && b.word) return {two_sum(a.hi, b.hi), a.m + b.m, 0, std::max(a.d, b.d)};
+    return {double_word_sum(a.hi, a.lo, b.hi, b.lo), a.m + b.m, std::max(a.c, b.c) + 5, std::max(a.d, b.d)};
+}
+template <class T> RAYQ_INLINE StaticDoubleWord<T> operator-(const StaticDoubleWord<T>& a)
+{
+    return {Pair<T>{-a.hi, -a.lo}, a.m, a.c, a.d, a.word};
+}
+template <class T> RAYQ_INLINE StaticDoubleWord<T> operator-(const StaticDoubleWord<T>& a, const StaticDoubleWord<T>& b) { return a + (-b); }
+template <class T> RAYQ_INLINE StaticDoubleWord<T> operator*(const StaticDoubleWord<T>& a, const StaticDoubleWord<T>& b)
+{
+    const T m = a.m * b.m;
+    const int c = a.c + b.c + 9, d = a.d + b.d;
+    if (a.word && b.word) return {two_product(a.hi, b.hi), m, 0, d};
+    if (b.word) return {double_word_times_word(a.hi, a.lo, b.hi), m, c, d};
+    if (a.word) return {double_word_times_word(b.hi, b.lo, a.hi), m, c, d};
+    return {double_word_product(a.hi, a.lo, b.hi, b.lo), m, c, d};
+}
+template <class T> RAYQ_INLINE StaticDoubleWord<T>& operator+=(StaticDoubleWord<T>& a, const StaticDoubleWord<T>& b) { return a = a + b; }
 
 // Certain sign of the exact value, or 0 when the bound straddles zero.
 template <class T>
@@ -90,6 +159,12 @@ RAYQ_INLINE Estimate<T> estimate(const DoubleWord<T>& x)
 {
     const T v = x.hi + x.lo;
     return {v, grow_inexact(x.e + unit_roundoff<T> * std::abs(v))};
+}
+template <class T>
+RAYQ_INLINE Estimate<T> estimate(const StaticDoubleWord<T>& x)
+{
+    const T v = x.hi + x.lo;
+    return {v, grow_inexact(x.bound() + unit_roundoff<T> * std::abs(v))};
 }
 // double -> float rounds to nearest: relative error <= u_float; grow() covers converting e. (An
 // exact zero stays one; a tiny nonzero x.v may round to a zero v, so the bound alone cannot say.)

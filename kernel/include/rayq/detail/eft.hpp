@@ -26,6 +26,14 @@ RAYQ_INLINE Pair<T> two_sum(T a, T b)
     return {s, e};
 }
 
+// a + b = s + e exactly when |a| >= |b| or a = 0 (Dekker's Fast2Sum: half TwoSum's operations).
+template <class T>
+RAYQ_INLINE Pair<T> fast_two_sum(T a, T b)
+{
+    const T s = a + b;
+    return {s, b - (s - a)};
+}
+
 // a·b = p + e exactly (barring overflow/underflow). With a hardware FMA the error term is one
 // fused operation; without one (the x86-64 baseline), std::fma is a slow library call, so we use
 // Dekker's product with Veltkamp splitting instead.

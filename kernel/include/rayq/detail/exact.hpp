@@ -205,19 +205,19 @@ struct ScaledDouble {
     }
 };
 
-// Root `which` of the quadratic whose residual along the ray `coef.at` gives (sign_a: a's sign, 0
-// when linear), rounded to nearest from a guess t by one Newton step t + δ, δ = −F(t)/F'(t), with
-// F, F' and a evaluated in wide_t arithmetic at t; none when the step cannot certify it.
+// Root `which` of a quadratic (sign_a: a's sign, 0 when linear), rounded to nearest from a guess t
+// by one Newton step t + δ, δ = −F(t)/F'(t), given F(t), F'(t) and a with certified bounds; none
+// when the step cannot certify it.
 // With x = 4·|a|·|F|/F'² <= 1/2 the nearest root lies within |δ|·x/2 of t + δ (the quadratic's
 // root 2F/(F' ± √(F'² − 4aF)) against its linearization), plus the bounds' effect on δ. If no
 // rounding boundary of T lies within that, fl(t + δ) is correctly rounded.
-template <class T, class Coef>
-inline std::optional<T> newton_rounded(const Coef& coef, int sign_a, int which, T t)
+// F must be far more precise than T (about u², a double word); F' and a need not be: they scale the
+// step and bound its curvature, and a relative error ~u in them moves δ by ~u·|δ|, far below the
+// half ulp the step resolves.
+template <class T>
+inline std::optional<T> newton_step(const Estimate<T>& f, const Estimate<T>& df, const Estimate<T>& a, int sign_a, int which, T t)
 {
-    if (!std::isfinite(t)) return std::nullopt;
-    const Residual<wide_t<T>> r = coef.at(wide_t<T>{t});
     const T u = unit_roundoff<T>;
-    const Estimate<T> f = estimate(r.f), df = estimate(r.df), a = estimate(r.a);
     const T fv = f.v, dv = df.v, f_err = f.e, d_err = df.e;
     const T d_min = (std::abs(dv) - d_err) * (T(1) - T(2) * u);
     if (!(d_min > T(0))) return std::nullopt;
@@ -244,6 +244,15 @@ inline std::optional<T> newton_rounded(const Coef& coef, int sign_a, int which, 
     const T down = (rounded - next_down(rounded)) / T(2);
     if (offset + slack < up && offset - slack > -down) return rounded;
     return std::nullopt;
+}
+
+// newton_step on the residual along the ray `coef.at`, F, F' and a evaluated in wide_t at t.
+template <class T, class Coef>
+inline std::optional<T> newton_rounded(const Coef& coef, int sign_a, int which, T t)
+{
+    if (!std::isfinite(t)) return std::nullopt;
+    const Residual<wide_t<T>> r = coef.at(wide_t<T>{t});
+    return newton_step(estimate(r.f), estimate(r.df), estimate(r.a), sign_a, which, t);
 }
 
 // The quadratic a·t² + b·t + c along the ray, whose coefficients `coef` computes in any number

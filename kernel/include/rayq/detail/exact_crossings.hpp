@@ -315,6 +315,29 @@ RAYQ_INLINE bool all_within_static_range(const X&... x)
     return (within_static_range(x) && ...);
 }
 
+// newton_rounded for the quick lanes, whose inputs are within the static range: F in a double word
+// with a static bound (StaticDoubleWord), F' and a in the static filter (magnitude.hpp). Flattened,
+// each residual computes only the part it is used for. A double's accurate closest hit took fewer
+// instructions than with running bounds (callgrind, -O3, AVX2+FMA / SSE2): sphere 41% / 41%,
+// capped cylinder 32% / 36%, cone 33% / 37%, disk 20% / 17%, triangle 8% / 8%.
+// A guess t outside the range, or a residual beyond the degrees the range covers, takes the
+// running bounds (newton_rounded). Double only: a float root needs no Newton step in the quick lanes.
+template <class T, class Coef>
+RAYQ_FLATTEN inline std::optional<T> quick_newton_rounded(const Coef& coef, int sign_a, int which, T t)
+{
+    static_assert(std::is_same_v<T, double>, "the quick lanes round float roots from their intervals");
+    if (within_static_range(t)) {
+        const StaticDoubleWord<T> f = coef.at(StaticDoubleWord<T>{t}).f;
+        const Residual<Magnitude<T>> slopes = coef.at(Magnitude<T>{t});
+        // Degrees: StaticDoubleWord's grid argument; products of at most 15 magnitudes in 2^±64
+        // stay normal (magnitude.hpp).
+        if (f.d <= 8 && slopes.df.d <= 15 && slopes.a.d <= 15)
+            return newton_step(estimate(f), Estimate<T>{slopes.df.v, slopes.df.bound()}, Estimate<T>{slopes.a.v, slopes.a.bound()}, sign_a,
+                               which, t);
+    }
+    return newton_rounded<T>(coef, sign_a, which, t);
+}
+
 // A normal (or any direction whose length does not matter) scaled by a power of two so that its
 // largest component is near 1, when it is far from 1 and the scaling is exact: the exact inside
 // tests square it (a disk's rim at the plane's root has |n|² in every term), and a component of
@@ -624,13 +647,19 @@ public:
 private:
     std::optional<T> newton_from_estimate(int which) const
     {
-        if (a_.sign == 0) return sign_b() != 0 ? newton_rounded<T>(coef_, 0, 0, -r_.f.v / r_.df.v) : std::nullopt;
+        if (a_.sign == 0) return sign_b() != 0 ? newton(0, -r_.f.v / r_.df.v) : std::nullopt;
         if (!(sign_disc_.known && sign_disc_.sign > 0)) return std::nullopt;
         // The estimate from the filter's values by the cancellation-free q-form (Ray Tracing Gems
         // ch. 7); the Newton step also checks that the root it rounds is `which`.
         const T b = r_.df.v, q = T(-0.5) * (b + std::copysign(std::sqrt(std::max(disc_.v, T(0))), b));
         const T g0 = q / r_.a.v, g1 = r_.f.v / q;
-        return newton_rounded<T>(coef_, a_.sign, which, (g0 < g1) == (which == 0) ? g0 : g1);
+        return newton(which, (g0 < g1) == (which == 0) ? g0 : g1);
+    }
+    // The static filter's inputs are within the static range (quick_solid_crossings checks them).
+    std::optional<T> newton(int which, T t) const
+    {
+        if constexpr (static_filter) return quick_newton_rounded<T>(coef_, a_.sign, which, t);
+        else return newton_rounded<T>(coef_, a_.sign, which, t);
     }
 
     struct Sign {
@@ -892,7 +921,7 @@ RAYQ_FLATTEN inline std::optional<Crossings<T>> quick_flat_crossing(const Ray<T>
     if (plane.inside < 0) return Crossings<T>{};
     std::optional<T> t;
     if constexpr (std::is_same_v<T, float>) t = rounded_between_midpoints<float>(quotient(-bounded(plane.f), bounded(plane.df)));
-    else t = newton_rounded<T>(coef, 0, 0, -plane.f.v / plane.df.v);
+    else t = quick_newton_rounded<T>(coef, 0, 0, -plane.f.v / plane.df.v);
     // A float t ≠ x on one side of x puts the exact root on that side: it lies beyond t's midpoint.
     if (!t || *t == ray.tmin || *t == ray.tmax) return std::nullopt;
     Crossings<T> out;
