@@ -71,12 +71,13 @@ template <class T>
 inline QuickFlat quick_flat(const Ray<T>& ray, const Disk<T>& disk)
 {
     using M = Magnitude<double>;
-    if (!all_within_static_range(disk.center, disk.normal, disk.radius)) return {{}, {}, 0, false};
+    // Out of range, computed and discarded, as quick_planar's (the counts stay constants).
     const Residual<M> plane = quick_plane(ray, disk);
     const Vec3<M> q = lift<M>(ray.origin) - lift<M>(disk.center), d = lift<M>(ray.direction);
     const Vec3<M> w = plane.df * q - plane.f * d;
     const M r{disk.radius};
-    return {plane.f, plane.df, -certain_sign(dot(w, w) - r * r * (plane.df * plane.df))};
+    return {plane.f, plane.df, -certain_sign(dot(w, w) - r * r * (plane.df * plane.df)),
+            all_within_static_range(disk.center, disk.normal, disk.radius)};
 }
 }  // namespace detail
 

@@ -995,14 +995,16 @@ inline PlanarNumerators<N> planar_numerators(const Ray<T>& ray, const Edges& edg
 template <class T, class Edges>
 inline QuickFlat quick_planar(const Ray<T>& ray, const Edges& edges, bool triangle, bool in_range)
 {
-    if (!in_range) return {{}, {}, 0, false};
+    // Computed even out of range (then discarded), so that the filter's counts stay constants
+    // (an early return with zero counts made them runtime values: 11% more instructions per
+    // double triangle hit, callgrind).
     const PlanarNumerators<Magnitude<double>> m = planar_numerators<true>(ray, edges, Magnitude<double>{});
     const int sign_det = certain_sign(m.det);
     const int alpha = sign_det * certain_sign(m.alpha), beta = sign_det * certain_sign(m.beta);
     const int upper0 = sign_det * certain_sign(triangle ? m.det - m.alpha - m.beta : m.det - m.alpha);
     const int upper1 = triangle ? 1 : sign_det * certain_sign(m.det - m.beta);
     const bool outside = alpha < 0 || beta < 0 || upper0 < 0 || upper1 < 0;
-    return {m.t, -m.det, outside ? -1 : (alpha > 0 && beta > 0 && upper0 > 0 && upper1 > 0 ? 1 : 0), true};
+    return {m.t, -m.det, outside ? -1 : (alpha > 0 && beta > 0 && upper0 > 0 && upper1 > 0 ? 1 : 0), in_range};
 }
 
 template <class T, class Edges>
