@@ -83,8 +83,10 @@ template <class T> RAYQ_INLINE DoubleWord<T>& operator+=(DoubleWord<T>& a, const
 // c, after Joldes, Muller, Popescu (ACM TOMS 2017) as DoubleWord's bounds: |a| <= M_a·(1 + c_a·u²),
 //   a + b: e_a + e_b + 4u²·(|a| + |b|) <= (max(c_a, c_b) + 5)·u²·(M_a + M_b),
 //   a·b:   |a|·e_b + |b|·e_a + e_a·e_b + 8u²·|a|·|b| <= (c_a + c_b + 9)·u²·M_a·M_b,
-// each while c_a·c_b·u² is negligible (c < 2^20). m's k <= c roundings leave c·u²·M <= (c + 1)·u²·m
-// (2·c·k·u <= 1), and bound() rounds once more, within the last unit (m >= 2^-928 or 0).
+// each while c_a·c_b·u² is negligible (c < 2^20). m's k roundings (k <= c + 1: only the exact sums
+// and products of inputs add none to c, and they are leaves) leave c·u²·M <= (c + 1)·u²·m
+// (2·c·k·u <= 1), and bound() rounds once more, within the last unit: relative u, or where u²·m
+// is subnormal (m >= 2^-928 or 0), absolute 2^-1075, far below that unit.
 // `word`: a single word (an input, lo = 0), so that sums and products of inputs, exact as TwoSum and
 // TwoProduct (c = 0), and products by an input skip their zero terms; like c and d it is a
 // constant once inlined.
