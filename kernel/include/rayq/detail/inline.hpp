@@ -2,11 +2,18 @@
 // transformations). GCC's heuristics leave their operators as calls inside the accurate policy's
 // template-heavy decisions, where a call costs more than the operation; forcing them inline
 // measured: accurate sphere 14.6x -> 9.6x the cost of fast (rayq-bench, same run, default flags).
+// RAYQ_NO_FLATTEN, defined before the first rayq include, drops RAYQ_FLATTEN: the same results,
+// a slower `accurate`, and a much faster GCC build of code that instantiates many intersectors
+// (certified_bound_test.cpp at -O1: 84 s -> 31 s); meant for test and debug builds.
 #pragma once
 
 #if defined(__GNUC__) || defined(__clang__)
 #define RAYQ_INLINE inline __attribute__((always_inline))
+#if defined(RAYQ_NO_FLATTEN)
+#define RAYQ_FLATTEN
+#else
 #define RAYQ_FLATTEN __attribute__((flatten))
+#endif
 #define RAYQ_INLINE_LAMBDA __attribute__((always_inline))
 #define RAYQ_NOINLINE __attribute__((noinline))
 #define RAYQ_UNLIKELY(condition) __builtin_expect(!!(condition), 0)
