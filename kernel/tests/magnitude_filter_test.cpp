@@ -5,6 +5,7 @@
 #include "test_support.hpp"
 
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include <rayq/detail/expansion.hpp>
@@ -17,21 +18,31 @@ namespace {
 using detail::Expansion;
 using detail::Magnitude;
 
-// A float with a random sign, significand and exponent in [lo, hi].
-float random_float(std::mt19937_64& rng, int lo, int hi)
+// A T with a random sign, full significand and exponent in [lo, hi]; 0 one time in `zeros`.
+template <class T>
+T random_number(std::mt19937_64& rng, int lo, int hi, int zeros = 0)
 {
-    std::uniform_real_distribution<double> m(1, 2);
-    std::uniform_int_distribution<int> e(lo, hi);
-    const float x = float(std::ldexp(m(rng), e(rng)));
+    if (zeros > 0 && rng() % zeros == 0) return T(0);
+    constexpr int fraction_bits = std::numeric_limits<T>::digits - 1;
+    const T significand = T(1) + std::ldexp(T(rng() >> (64 - fraction_bits)), -fraction_bits);
+    const T x = std::ldexp(significand, std::uniform_int_distribution<int>(lo, hi)(rng));
     return rng() & 1 ? -x : x;
 }
 
-// |exact − v| <= bound, decided exactly: bound − |v − E| >= 0 as expansions.
+// |exact − value| <= bound, decided exactly: bound − |value − exact| >= 0 as expansions.
+bool bound_holds(const Expansion<double>& value, double bound, const Expansion<double>& exact)
+{
+    const Expansion<double> diff = value - exact;
+    const Expansion<double> b(bound);
+    return (b - diff).sign() >= 0 && (b + diff).sign() >= 0;
+}
 bool bound_holds(const Magnitude<double>& x, const Expansion<double>& exact)
 {
-    const Expansion<double> diff = Expansion<double>(x.v) - exact;
-    const Expansion<double> b(x.bound());
-    return (b - diff).sign() >= 0 && (b + diff).sign() >= 0;
+    return bound_holds(Expansion<double>(x.v), x.bound(), exact);
+}
+bool bound_holds(const detail::StaticDoubleWord<double>& x, const Expansion<double>& exact)
+{
+    return bound_holds(Expansion<double>(x.hi) + Expansion<double>(x.lo), x.bound(), exact);
 }
 
 // The sphere's coefficients at t = 0 and their discriminant, as the quick lane computes them, on
@@ -43,10 +54,9 @@ TEST(MagnitudeFilter, BoundHoldsOnSphereCoefficientsAndDiscriminant)
     int checked = 0, decided = 0;
     for (int i = 0; i < 20000; ++i) {
         const int spread = i % 3 == 0 ? 40 : (i % 3 == 1 ? 4 : 126);
-        Sphere<float> s{{random_float(rng, -spread, spread), random_float(rng, -spread, spread), random_float(rng, -spread, spread)},
-                        std::abs(random_float(rng, -spread, spread))};
-        Ray<float> r{{random_float(rng, -spread, spread), random_float(rng, -spread, spread), random_float(rng, -spread, spread)},
-                     {random_float(rng, -spread, spread), random_float(rng, -spread, spread), random_float(rng, -spread, spread)}};
+        const auto x = [&] { return random_number<float>(rng, -spread, spread); };
+        Sphere<float> s{{x(), x(), x()}, std::abs(x())};
+        Ray<float> r{{x(), x(), x()}, {x(), x(), x()}};
         if (i % 2 == 1) {  // aim along an axis at the rim: the discriminant nearly cancels
             r.origin = {s.center.x - 4 * s.radius, s.center.y + s.radius * (1 - 1e-6f * float(i % 7)), s.center.z};
             r.direction = {1.0f, 0.0f, 0.0f};
@@ -72,23 +82,6 @@ TEST(MagnitudeFilter, BoundHoldsOnSphereCoefficientsAndDiscriminant)
     EXPECT_LT(decided, checked);
 }
 
-// A double with a random sign and 53-bit significand, exponent in [lo, hi]; 0 one time in `zeros`.
-double random_double(std::mt19937_64& rng, int lo, int hi, int zeros = 0)
-{
-    if (zeros > 0 && rng() % zeros == 0) return 0.0;
-    std::uniform_int_distribution<int> e(lo, hi);
-    const double x = std::ldexp(1.0 + double(rng() >> 12) * 0x1p-52, e(rng));
-    return rng() & 1 ? -x : x;
-}
-
-// |exact − (hi + lo)| <= bound, decided exactly.
-bool bound_holds(const detail::StaticDoubleWord<double>& x, const Expansion<double>& exact)
-{
-    const Expansion<double> diff = Expansion<double>(x.hi) + Expansion<double>(x.lo) - exact;
-    const Expansion<double> b(x.bound());
-    return (b - diff).sign() >= 0 && (b + diff).sign() >= 0;
-}
-
 // The quick lanes' Newton step evaluates F in StaticDoubleWord (quick_newton_rounded): its static
 // bound holds against exact expansions on every primitive's residual, at the edges of the range it
 // is promised (inputs and t of 0 or within 2^±64, down to 2^-64 with full significands: the grid
@@ -111,7 +104,7 @@ TEST(MagnitudeFilter, StaticDoubleWordBoundHoldsOnEveryResidual)
     };
     for (int i = 0; i < 6000; ++i) {
         const int lo = i % 3 == 0 ? -64 : (i % 3 == 1 ? -2 : -30), hi = i % 3 == 0 ? 63 : (i % 3 == 1 ? 2 : 30);
-        const auto x = [&] { return random_double(rng, lo, hi, 8); };
+        const auto x = [&] { return random_number<double>(rng, lo, hi, 8); };
         const auto v = [&] { return Vec3<double>{x(), x(), x()}; };
         const Ray<double> r{v(), v()};
         const Vec3<double> p0 = v(), p1 = v();

@@ -156,17 +156,22 @@ template <class T>
 struct Estimate {
     T v, e;
 };
+// hi + lo within `bound` of the exact value, rounded to one T.
+template <class T>
+RAYQ_INLINE Estimate<T> estimate_of(T hi, T lo, T bound)
+{
+    const T v = hi + lo;
+    return {v, grow_inexact(bound + unit_roundoff<T> * std::abs(v))};
+}
 template <class T>
 RAYQ_INLINE Estimate<T> estimate(const DoubleWord<T>& x)
 {
-    const T v = x.hi + x.lo;
-    return {v, grow_inexact(x.e + unit_roundoff<T> * std::abs(v))};
+    return estimate_of(x.hi, x.lo, x.e);
 }
 template <class T>
 RAYQ_INLINE Estimate<T> estimate(const StaticDoubleWord<T>& x)
 {
-    const T v = x.hi + x.lo;
-    return {v, grow_inexact(x.bound() + unit_roundoff<T> * std::abs(v))};
+    return estimate_of(x.hi, x.lo, x.bound());
 }
 // double -> float rounds to nearest: relative error <= u_float; grow() covers converting e. (An
 // exact zero stays one; a tiny nonzero x.v may round to a zero v, so the bound alone cannot say.)
