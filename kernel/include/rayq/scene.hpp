@@ -231,21 +231,24 @@ inline std::optional<SceneRef<typename Scene<Prims...>::scalar_type>> nearest(
     using T = typename Scene<Prims...>::scalar_type;
     if (!usable(ray)) return std::nullopt;
     Ray<T> window = ray;
-    std::optional<Crossing<T>> best_crossing;
-    std::optional<SceneRef<T>> best;
+    std::optional<Crossing<T>> best;
+    int best_type = 0;
+    std::size_t best_index = 0;
     std::apply(
         [&](const auto&... store) {
             int type = 0;
             const auto one = [&](const auto& s) {
-                std::size_t index = 0;
-                if (s.closest(policy, window, best_crossing, index))
-                    best = SceneRef<T>{best_crossing->t, type, index, best_crossing->part, best_crossing->entering};
+                if (s.closest(policy, window, best, best_index)) best_type = type;
                 ++type;
             };
             (one(store), ...);
         },
         scene.stores());
-    return best;
+    // Built once, here: assembled field by field in the loop, GCC copied the optional with
+    // 16-byte loads of just-written bytes (two store-forwarding stalls per ray: a one-sphere
+    // scene's nearest() took 18.3 ns per ray against 7.4 ns).
+    if (!best) return std::nullopt;
+    return SceneRef<T>{best->t, best_type, best_index, best->part, best->entering};
 }
 
 // The hit record of a nearest() answer for the same ray and scene: the scalar intersect() of that
