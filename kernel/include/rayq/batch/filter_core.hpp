@@ -58,6 +58,7 @@ using rayq::detail::norm1;  // |v|₁, the filters' bound on a point's coordinat
 template <class T>
 struct FilterRay {
     Vec3<T> origin, unit_dir;
+    T len;            // |d|
     T inv_len;        // 1/|d|: t is measured in units of d
     T line_slack_abs; // absolute slack on ℓ² − r² for underflow (see below)
     T t_slack_abs;
@@ -65,7 +66,7 @@ struct FilterRay {
 
     explicit FilterRay(const Ray<T>& ray)
     {
-        const T len = length(ray.direction);
+        len = length(ray.direction);
         inv_len = T(1) / len;
         o1 = norm1(ray.origin);
         extreme = !(len < huge && o1 < huge);
@@ -77,7 +78,7 @@ struct FilterRay {
         // Factored so that no step is subnormal: min/|d|² was, for every ray with |d| > 1, and a
         // subnormal result costs x86 a ~100-cycle assist (most of a small scene's time per ray).
         constexpr T k_min = T(k_slack) * std::numeric_limits<T>::min();
-        line_slack_abs = k_min * (T(1) / (len * len) + T(1));
+        line_slack_abs = k_min * (inv_len * inv_len + T(1));
         // ≥ √line_slack_abs / |d| (√(a + b) ≤ √a + √b), without a second square root per ray.
         t_slack_abs = sqrt_k_min * (inv_len + T(1)) * inv_len;
     }
@@ -177,13 +178,15 @@ struct BoundSlack {
 // 1.3e-312 beside 0.96: a hit at t = −0 for a ray nearly in its plane, outside it; all found by
 // the fuzz harnesses' scene and stream invariants). The filters keep every lane of such a
 // primitive and of such a ray, so batch and scalar still agree.
+// Components already within range need no scaling (direction_near_unit returns them as they are):
+// the common case, tested first and inline, as the bound filter does for every ray.
 template <class T>
-bool normal_within_exact_range(const Vec3<T>& normal)
+RAYQ_INLINE bool normal_within_exact_range(const Vec3<T>& normal)
 {
+    const auto fine = [](T x) { return x == T(0) || detail::within_exact_range(std::abs(x)); };
+    if (fine(normal.x) && fine(normal.y) && fine(normal.z)) return true;
     const Vec3<T> n = detail::direction_near_unit(normal);
-    for (const T x : {n.x, n.y, n.z})
-        if (x != T(0) && !detail::within_exact_range(std::abs(x))) return false;
-    return true;
+    return fine(n.x) && fine(n.y) && fine(n.z);
 }
 
 // What the filter needs of one ray: the sphere filter's per-ray values, plus Kε·|o|₁ (squared
@@ -196,7 +199,7 @@ struct BoundFilterRay : FilterRay<T> {
     explicit BoundFilterRay(const Ray<T>& ray) : FilterRay<T>(ray)
     {
         const T ko1 = BoundSlack<T>::k_eps * this->o1;
-        const bool extreme = !(this->o1 < BoundSlack<T>::huge) || BoundSlack<T>::outside(T(1) / this->inv_len) ||
+        const bool extreme = !(this->o1 < BoundSlack<T>::huge) || BoundSlack<T>::outside(this->len) ||
                              !normal_within_exact_range(ray.direction);
         abs_slack = extreme ? std::numeric_limits<T>::infinity() : T(34) * ko1 * ko1 + this->line_slack_abs;
         if (extreme) this->t_slack_abs = std::numeric_limits<T>::infinity();  // nor the window test
