@@ -11,8 +11,8 @@ jobs="${RAYQ_JOBS:-$(nproc)}"
 # this build keeps what tests the compiler and the packaging: the kernel suite's C++20 copy, the
 # README example, the header self-containment and find_package checks. With RAYQ_SANITIZE=0,
 # the whole suite is built and run here.
-# That C++20 copy is built with RAYQ_NO_FLATTEN (GCC compiles it in about half the time; the
-# sanitizer stage tests the flattened build).
+# That C++20 copy is built with RAYQ_NO_FLATTEN (GCC compiles it in about a third of the time;
+# the sanitizer stage tests the flattened build).
 validation=ON; standards="17;20"; embree_tests=ON; no_flatten=OFF
 [ "${RAYQ_SANITIZE:-1}" != 0 ] && validation=OFF && standards=20 && embree_tests=OFF && no_flatten=ON
 cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE=-O1 \
