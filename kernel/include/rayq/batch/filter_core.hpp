@@ -54,7 +54,9 @@ namespace rayq::batch {
 
 using rayq::detail::norm1;  // |v|₁, the filters' bound on a point's coordinates
 
-// What both filters need of one ray, computed once per ray.
+// What both filters need of one ray, computed once per ray. The constructors are forced inline:
+// in a large translation unit (rayq-bench-embree) GCC called them out of line, and 16 capped
+// cylinders under `fast` ran at 16 M rays/s native against 26 M in a small program; 28.6 inlined.
 template <class T>
 struct FilterRay {
     Vec3<T> origin, unit_dir;
@@ -64,7 +66,7 @@ struct FilterRay {
     T t_slack_abs;
     T o1;             // |o|₁
 
-    explicit FilterRay(const Ray<T>& ray)
+    RAYQ_INLINE explicit FilterRay(const Ray<T>& ray)
     {
         len = length(ray.direction);
         inv_len = T(1) / len;
@@ -108,7 +110,7 @@ struct SphereFilterRay : FilterRay<T> {
     Vec3<T> line_dir;
     T line_slack, line_inv_len;
 
-    explicit SphereFilterRay(const Ray<T>& ray) : FilterRay<T>(ray)
+    RAYQ_INLINE explicit SphereFilterRay(const Ray<T>& ray) : FilterRay<T>(ray)
     {
         line_dir = this->unit_dir * line_scale;
         line_slack = this->line_slack_abs * (line_scale * line_scale);
@@ -196,7 +198,7 @@ struct BoundFilterRay : FilterRay<T> {
     T abs_slack;  // 34·(Kε·|o|₁)² + the underflow slack on ℓ² (inf: keep every lane, and
                   // t_slack_abs is inf too)
 
-    explicit BoundFilterRay(const Ray<T>& ray) : FilterRay<T>(ray)
+    RAYQ_INLINE explicit BoundFilterRay(const Ray<T>& ray) : FilterRay<T>(ray)
     {
         const T ko1 = BoundSlack<T>::k_eps * this->o1;
         const bool extreme = !(this->o1 < BoundSlack<T>::huge) || BoundSlack<T>::outside(this->len) ||
