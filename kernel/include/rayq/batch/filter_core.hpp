@@ -185,10 +185,10 @@ struct BoundSlack {
 template <class T>
 RAYQ_INLINE bool normal_within_exact_range(const Vec3<T>& normal)
 {
-    const auto fine = [](T x) { return x == T(0) || detail::within_exact_range(std::abs(x)); };
-    if (fine(normal.x) && fine(normal.y) && fine(normal.z)) return true;
-    const Vec3<T> n = detail::direction_near_unit(normal);
-    return fine(n.x) && fine(n.y) && fine(n.z);
+    const auto fine = [](const Vec3<T>& v) {
+        return detail::zero_or_within_exact_range(v.x) && detail::zero_or_within_exact_range(v.y) && detail::zero_or_within_exact_range(v.z);
+    };
+    return fine(normal) || fine(detail::direction_near_unit(normal));
 }
 
 // What the filter needs of one ray: the sphere filter's per-ray values, plus Kε·|o|₁ (squared

@@ -295,6 +295,9 @@ inline bool scale_exactly(T& x, int k)
 // [2^-64, 2^64] stays within double's exponent range (and float's, lifted to double).
 template <class T>
 constexpr bool within_exact_range(T magnitude) { return magnitude >= T(0x1p-64) && magnitude <= T(0x1p64); }
+// A value the exact expansions take as it is: zero, or its magnitude within range.
+template <class T>
+RAYQ_INLINE bool zero_or_within_exact_range(T x) { return x == T(0) || within_exact_range(std::abs(x)); }
 
 // Whether the static filter (magnitude.hpp) may take these inputs: each 0 or within 2^±64, so that
 // products of up to six of them stay in double's normal range. Float inputs, in double, always may.
@@ -302,7 +305,7 @@ template <class T>
 RAYQ_INLINE bool within_static_range(T x)
 {
     if constexpr (std::is_same_v<T, float>) return true;
-    else return x == T(0) || within_exact_range(std::abs(x));
+    else return zero_or_within_exact_range(x);
 }
 template <class T>
 RAYQ_INLINE bool within_static_range(const Vec3<T>& v)
@@ -478,7 +481,7 @@ inline Crossings<scalar_t<Prim>> exact_curved_crossings_in_unit(const Ray<scalar
 {
     using T = scalar_t<Prim>;
     const T direction = std::max({std::abs(ray.direction.x), std::abs(ray.direction.y), std::abs(ray.direction.z)});
-    const bool in_range = (length == T(0) || within_exact_range(length)) && within_exact_range(direction);
+    const bool in_range = zero_or_within_exact_range(length) && within_exact_range(direction);
     if constexpr (std::is_same_v<T, float>) {
         // Float inputs are solved in double's unit instead: every float scaled by the powers of
         // two the unit needs stays exact in double (a float difference that overflows, too), and a
