@@ -140,9 +140,10 @@ struct SceneStore {
     {
         bool found = false;
         scan<Policy>(ray, [&](std::size_t i) RAYQ_INLINE_LAMBDA {
-            const std::optional<Crossing<T>> c = first_crossing_in_window(policy, ray, items[i]);
+            const auto crossings = leading_crossings(policy, ray, items[i]);
+            const Crossing<T>* c = first_in_window(ray, crossings);
             if (c && (!best || c->t < best->t)) {
-                best = c;
+                best = *c;
                 ray.tmax = next_up(c->t);
                 index = i;
                 found = true;
@@ -155,7 +156,9 @@ struct SceneStore {
     template <class Policy>
     RAYQ_INLINE bool any(Policy policy, const Ray<T>& ray) const
     {
-        return scan<Policy>(ray, [&](std::size_t i) RAYQ_INLINE_LAMBDA { return first_crossing_in_window(policy, ray, items[i]).has_value(); });
+        return scan<Policy>(ray, [&](std::size_t i) RAYQ_INLINE_LAMBDA {
+            return first_in_window(ray, leading_crossings(policy, ray, items[i])) != nullptr;
+        });
     }
 
 };
