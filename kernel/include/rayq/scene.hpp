@@ -300,8 +300,10 @@ inline std::optional<SceneHit<typename Scene<Prims...>::scalar_type>> intersect(
     return complete(policy, ray, scene, *ref, fields);
 }
 
+// Forced inline as nearest() is (callgrind, SSE2, instructions per ray: one capped cylinder 209 ->
+// 186, one sphere 120 -> 95, 16 spheres 360 -> 340).
 template <class Policy, class... Prims, std::enable_if_t<is_policy_v<Policy>, int> = 0>
-inline bool occluded(Policy policy, const Ray<typename Scene<Prims...>::scalar_type>& ray, const Scene<Prims...>& scene)
+RAYQ_INLINE bool occluded(Policy policy, const Ray<typename Scene<Prims...>::scalar_type>& ray, const Scene<Prims...>& scene)
 {
     if (!usable(ray)) return false;
     return detail::visit_stores(scene.stores(), [&](const auto& store, int) RAYQ_INLINE_LAMBDA { return store.any(policy, ray); });
