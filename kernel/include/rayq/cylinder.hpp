@@ -2,6 +2,8 @@
 // disks cap0 (at p0) and cap1 (at p1).
 #pragma once
 
+#include <type_traits>
+
 #include "batch/filter_core.hpp"
 #include "detail/bounded.hpp"
 #include "detail/exact_crossings.hpp"
