@@ -9,7 +9,7 @@
 #include <string>
 #include <type_traits>
 
-namespace rayq::test {
+namespace rayq::test::accurate_contract_test {
 namespace {
 
 template <class T>
@@ -211,8 +211,6 @@ TYPED_TEST(AccurateContractTest, WindowAtTheRoot)
     EXPECT_FALSE(intersect(accurate, r, p));
 }
 
-namespace rayq::test {
-namespace {
 
 // Correct rounding commutes with exact scaling: lengths (origin, primitive) scaled by 2^a and the
 // direction by 2^b move every exact root by 2^(a−b), so the accurate t must move by exactly that —
@@ -324,8 +322,6 @@ TEST(CertifiedBoundRegression, NoCertificateForANonexistentRoot)
         }
 }
 
-}  // namespace
-}  // namespace rayq::test
 
 // Found by the sphere libFuzzer harness: a float sphere of radius 2^101 whose surface passes 2^-102
 // from the origin, seen along 2^-13. The rescaled root (2^-203) fell below float's range, and
@@ -592,4 +588,4 @@ TEST(AccurateRegression, ZeroRootIsPositiveZeroInEveryQuery)
 }
 
 }  // namespace
-}  // namespace rayq::test
+}  // namespace rayq::test::accurate_contract_test

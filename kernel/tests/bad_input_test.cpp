@@ -3,7 +3,7 @@
 
 #include <vector>
 
-namespace rayq::test {
+namespace rayq::test::bad_input_test {
 namespace {
 
 template <class C>
@@ -137,4 +137,4 @@ TEST(BadInput, HitPointNearTheLargestFloatSaturates)
 }
 
 }  // namespace
-}  // namespace rayq::test
+}  // namespace rayq::test::bad_input_test

@@ -14,7 +14,7 @@
 
 #include "test_support.hpp"
 
-namespace rayq::test {
+namespace rayq::test::batch_test {
 namespace {
 
 template <class C>
@@ -461,4 +461,4 @@ TYPED_TEST(BatchTest, SceneOfEveryBoundedTypeEqualsTheScalarLoop)
 }
 
 }  // namespace
-}  // namespace rayq::test
+}  // namespace rayq::test::batch_test

@@ -4,7 +4,7 @@
 
 #include <random>
 
-namespace rayq::test {
+namespace rayq::test::certified_bound_test {
 namespace {
 
 template <class C>
@@ -84,4 +84,4 @@ TYPED_TEST(CertifiedBoundTest, ExactRootLiesWithinTError)
 }
 
 }  // namespace
-}  // namespace rayq::test
+}  // namespace rayq::test::certified_bound_test

@@ -1,6 +1,6 @@
 #include "test_support.hpp"
 
-namespace rayq::test {
+namespace rayq::test::cone_test {
 namespace {
 
 template <class C>
@@ -116,4 +116,4 @@ TEST(ConeNormal, FiniteWhereTheSlopeOverflows)
 }
 
 }  // namespace
-}  // namespace rayq::test
+}  // namespace rayq::test::cone_test

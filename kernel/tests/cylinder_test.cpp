@@ -1,6 +1,6 @@
 #include "test_support.hpp"
 
-namespace rayq::test {
+namespace rayq::test::cylinder_test {
 namespace {
 
 template <class C>
@@ -133,4 +133,4 @@ TYPED_TEST(CylinderTest, ParallelToCapsOutsideSlab)
 }
 
 }  // namespace
-}  // namespace rayq::test
+}  // namespace rayq::test::cylinder_test

@@ -1,6 +1,6 @@
 #include "test_support.hpp"
 
-namespace rayq::test {
+namespace rayq::test::disk_test {
 namespace {
 
 template <class C>
@@ -48,4 +48,4 @@ TYPED_TEST(DiskTest, ParallelRayMisses)
 }
 
 }  // namespace
-}  // namespace rayq::test
+}  // namespace rayq::test::disk_test

@@ -13,7 +13,7 @@
 #include <rayq/detail/exact.hpp>
 #include <rayq/detail/expansion.hpp>
 
-namespace rayq::detail {
+namespace rayq::detail::dyadic_test {
 namespace {
 
 __extension__ typedef __int128 Int;  // NOLINT: GCC and clang's 128-bit integer, exact up to 2^127
@@ -211,4 +211,4 @@ TEST(Dyadic, ExactGuessHoldsWhereTheDiscriminantUnderflows)
 }
 
 }  // namespace
-}  // namespace rayq::detail
+}  // namespace rayq::detail::dyadic_test

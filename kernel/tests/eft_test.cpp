@@ -7,7 +7,7 @@
 #include <rayq/detail/exact.hpp>
 #include <rayq/detail/ulp.hpp>
 
-namespace rayq::test {
+namespace rayq::test::eft_test {
 namespace {
 
 __extension__ typedef __float128 quad;  // GCC/Clang binary128: the exact reference
@@ -137,4 +137,4 @@ TEST(ErrorFreeTransformations, CompensatedDotMeetsTwicePrecisionBound)
 }
 
 }  // namespace
-}  // namespace rayq::test
+}  // namespace rayq::test::eft_test

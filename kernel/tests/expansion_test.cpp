@@ -12,7 +12,7 @@
 
 #include <rayq/detail/expansion.hpp>
 
-namespace rayq::detail {
+namespace rayq::detail::expansion_test {
 namespace {
 
 __extension__ typedef __int128 Int;  // NOLINT: GCC and clang's 128-bit integer, exact up to 2^127
@@ -137,4 +137,4 @@ TEST(Expansion, ProductsAndDifferencesOfProductsAreExact)
 }
 
 }  // namespace
-}  // namespace rayq::detail
+}  // namespace rayq::detail::expansion_test

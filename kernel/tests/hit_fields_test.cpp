@@ -7,7 +7,7 @@
 
 #include "test_support.hpp"
 
-namespace rayq::test {
+namespace rayq::test::hit_fields_test {
 namespace {
 
 template <class C>
@@ -107,4 +107,4 @@ TYPED_TEST(HitFieldsTest, FewerFieldsSameValues)
 }
 
 }  // namespace
-}  // namespace rayq::test
+}  // namespace rayq::test::hit_fields_test

@@ -3,7 +3,7 @@
 
 #include <random>
 
-namespace rayq::test {
+namespace rayq::test::intersect_all_test {
 namespace {
 
 template <class C>
@@ -68,4 +68,4 @@ TYPED_TEST(IntersectAllTest, WindowCutsTheList)
 }
 
 }  // namespace
-}  // namespace rayq::test
+}  // namespace rayq::test::intersect_all_test

@@ -12,7 +12,7 @@
 #include <rayq/detail/double_word.hpp>
 #include <rayq/detail/magnitude.hpp>
 
-namespace rayq::test {
+namespace rayq::test::magnitude_filter_test {
 namespace {
 
 using detail::Expansion;
@@ -430,4 +430,4 @@ TEST(MagnitudeFilter, AxialQuickLaneAgreesWithTheExactPath) { expect_axial_lane_
 TEST(MagnitudeFilter, DoubleAxialQuickLaneAgreesWithTheExactPath) { expect_axial_lane_agrees<double>(); }
 
 }  // namespace
-}  // namespace rayq::test
+}  // namespace rayq::test::magnitude_filter_test

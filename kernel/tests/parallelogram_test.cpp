@@ -1,6 +1,6 @@
 #include "test_support.hpp"
 
-namespace rayq::test {
+namespace rayq::test::parallelogram_test {
 namespace {
 
 template <class C>
@@ -52,4 +52,4 @@ TYPED_TEST(ParallelogramTest, ParallelRay)
 }
 
 }  // namespace
-}  // namespace rayq::test
+}  // namespace rayq::test::parallelogram_test

@@ -1,6 +1,6 @@
 #include "test_support.hpp"
 
-namespace rayq::test {
+namespace rayq::test::plane_test {
 namespace {
 
 template <class C>
@@ -51,4 +51,4 @@ TYPED_TEST(PlaneTest, ParallelBehindAndWindow)
 }
 
 }  // namespace
-}  // namespace rayq::test
+}  // namespace rayq::test::plane_test

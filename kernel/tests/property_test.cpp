@@ -38,7 +38,7 @@
 #include <utility>
 #include <vector>
 
-namespace rayq::test {
+namespace rayq::test::property_test {
 namespace {
 
 // The bounds, in the units defined above, per policy: about twice the worst value measured (the
@@ -680,4 +680,4 @@ TYPED_TEST(PropertyTest, CappedCylinder)
 }
 
 }  // namespace
-}  // namespace rayq::test
+}  // namespace rayq::test::property_test

@@ -2,7 +2,7 @@
 // textbook formula cancels.
 #include "test_support.hpp"
 
-namespace rayq::test {
+namespace rayq::test::quadratic_test {
 namespace {
 
 template <class C>
@@ -108,4 +108,4 @@ TEST(QuadraticAccuracy, FarSphereDiscriminant)
 }
 
 }  // namespace
-}  // namespace rayq::test
+}  // namespace rayq::test::quadratic_test

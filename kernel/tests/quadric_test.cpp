@@ -1,6 +1,6 @@
 #include "test_support.hpp"
 
-namespace rayq::test {
+namespace rayq::test::quadric_test {
 namespace {
 
 template <class C>
@@ -135,4 +135,4 @@ TYPED_TEST(QuadricTest, Validate)
 }
 
 }  // namespace
-}  // namespace rayq::test
+}  // namespace rayq::test::quadric_test

@@ -9,7 +9,7 @@
 
 #include "test_support.hpp"
 
-namespace rayq::test {
+namespace rayq::test::scene_test {
 namespace {
 
 template <class C>
@@ -204,4 +204,4 @@ TYPED_TEST(SceneTest, BadRaysAndInvalidPrimitivesNeverHit)
 }
 
 }  // namespace
-}  // namespace rayq::test
+}  // namespace rayq::test::scene_test

@@ -5,7 +5,7 @@
 
 #include <random>
 
-namespace rayq::test {
+namespace rayq::test::spawn_test {
 namespace {
 
 template <class C>
@@ -99,4 +99,4 @@ TEST(Spawn, FarAwaySphereAndUncertifiedFallback)
 }
 
 }  // namespace
-}  // namespace rayq::test
+}  // namespace rayq::test::spawn_test

@@ -1,6 +1,6 @@
 #include "test_support.hpp"
 
-namespace rayq::test {
+namespace rayq::test::sphere_test {
 namespace {
 
 template <class C>
@@ -99,4 +99,4 @@ TYPED_TEST(SphereTest, FarAwaySmallSphere)
 }
 
 }  // namespace
-}  // namespace rayq::test
+}  // namespace rayq::test::sphere_test

@@ -21,7 +21,7 @@
 #define RAYQ_TEST_HAS_MXCSR 0
 #endif
 
-namespace rayq::test {
+namespace rayq::test::subnormal_operand_test {
 namespace {
 
 #if RAYQ_TEST_HAS_MXCSR
@@ -190,4 +190,4 @@ TYPED_TEST(SubnormalOperandTest, TiltedPrimitivesAlongTheAxes)
 }
 
 }  // namespace
-}  // namespace rayq::test
+}  // namespace rayq::test::subnormal_operand_test

@@ -3,7 +3,7 @@
 
 #include <random>
 
-namespace rayq::test {
+namespace rayq::test::transformed_test {
 namespace {
 
 template <class C>
@@ -135,4 +135,4 @@ TYPED_TEST(TransformedTest, TransformedCylinderAgreesWithWorldCylinder)
 }
 
 }  // namespace
-}  // namespace rayq::test
+}  // namespace rayq::test::transformed_test

@@ -1,6 +1,6 @@
 #include "test_support.hpp"
 
-namespace rayq::test {
+namespace rayq::test::triangle_test {
 namespace {
 
 template <class C>
@@ -51,4 +51,4 @@ TYPED_TEST(TriangleTest, ParallelAndWindow)
 }
 
 }  // namespace
-}  // namespace rayq::test
+}  // namespace rayq::test::triangle_test

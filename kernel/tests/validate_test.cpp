@@ -3,7 +3,7 @@
 
 #include <string>
 
-namespace rayq::test {
+namespace rayq::test::validate_test {
 namespace {
 
 template <class Prim>
@@ -54,4 +54,4 @@ TYPED_TEST(ValidateTest, ReasonsNameTheFieldAndTheProblem)
 }
 
 }  // namespace
-}  // namespace rayq::test
+}  // namespace rayq::test::validate_test
