@@ -185,10 +185,7 @@ struct BoundSlack {
 template <class T>
 RAYQ_INLINE bool normal_within_exact_range(const Vec3<T>& normal)
 {
-    const auto fine = [](const Vec3<T>& v) {
-        return detail::zero_or_within_exact_range(v.x) && detail::zero_or_within_exact_range(v.y) && detail::zero_or_within_exact_range(v.z);
-    };
-    return fine(normal) || fine(detail::direction_near_unit(normal));
+    return detail::zero_or_within_exact_range(normal) || detail::zero_or_within_exact_range(detail::direction_near_unit(normal));
 }
 
 // What the filter needs of one ray: the sphere filter's per-ray values, plus Kε·|o|₁ (squared

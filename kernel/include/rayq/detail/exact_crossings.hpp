@@ -298,6 +298,11 @@ constexpr bool within_exact_range(T magnitude) { return magnitude >= T(0x1p-64) 
 // A value the exact expansions take as it is: zero, or its magnitude within range.
 template <class T>
 RAYQ_INLINE bool zero_or_within_exact_range(T x) { return x == T(0) || within_exact_range(std::abs(x)); }
+template <class T>
+RAYQ_INLINE bool zero_or_within_exact_range(const Vec3<T>& v)
+{
+    return zero_or_within_exact_range(v.x) && zero_or_within_exact_range(v.y) && zero_or_within_exact_range(v.z);
+}
 
 // Whether the static filter (magnitude.hpp) may take these inputs: each 0 or within 2^±64, so that
 // products of up to six of them stay in double's normal range. Float inputs, in double, always may.
