@@ -211,7 +211,6 @@ TYPED_TEST(AccurateContractTest, WindowAtTheRoot)
     EXPECT_FALSE(intersect(accurate, r, p));
 }
 
-
 // Correct rounding commutes with exact scaling: lengths (origin, primitive) scaled by 2^a and the
 // direction by 2^b move every exact root by 2^(a−b), so the accurate t must move by exactly that —
 // at magnitudes whose exact expansions would under- or overflow without the kernel's rescaling
@@ -321,7 +320,6 @@ TEST(CertifiedBoundRegression, NoCertificateForANonexistentRoot)
             EXPECT_FALSE(std::isfinite(h->t_error)) << "t = " << h->t << " certified within " << h->t_error;
         }
 }
-
 
 // Found by the sphere libFuzzer harness: a float sphere of radius 2^101 whose surface passes 2^-102
 // from the origin, seen along 2^-13. The rescaled root (2^-203) fell below float's range, and
