@@ -99,6 +99,8 @@ json results_of(json summary)
 
 const std::string small = "--only oracle --only mesh --oracle-cases 120 --mesh-rays 120 --mesh-max-n 16 --seed 5";
 const char* const harnesses[] = {"flat", "sphere", "axial", "quadric", "transformed"};
+// Gates both of which pass when their campaigns run; the second is on the mesh campaign.
+const char* const passing_gates = "oracle.accurate.contract_scope.max_ulp <= 1\nmesh.disagreements == 0\n";
 
 void use_fresh_work_directory(const char* suite)
 {
@@ -164,7 +166,7 @@ TEST_F(RayqValidate, GatesDecideTheExitStatus)
     const fs::path quick = work / "quick";
     ASSERT_TRUE(fs::exists(quick / "partial.json"));
     std::ofstream(work / "failing.txt") << "oracle.accurate.contract_scope.max_ulp <= 0.25   # deliberately impossible: correct rounding is 0.5\n";
-    std::ofstream(work / "passing.txt") << "oracle.accurate.contract_scope.max_ulp <= 1\nmesh.disagreements == 0\n";
+    std::ofstream(work / "passing.txt") << passing_gates;
     std::ofstream(work / "nomatch.txt") << "oracle.accurate.no_such_metric <= 1\n";
 
     Result r = run("merge --out " + (work / "regated").string() + " --gates " + (work / "failing.txt").string() + " " + quick.string());
@@ -179,7 +181,7 @@ TEST_F(RayqValidate, GatesDecideTheExitStatus)
 TEST_F(RayqValidateStandalone, AGateOnACampaignThatDidNotRunIsSkippedNeverPassed)
 {
     // A run without the mesh campaign: its gate is skipped, not passed.
-    std::ofstream(work / "passing.txt") << "oracle.accurate.contract_scope.max_ulp <= 1\nmesh.disagreements == 0\n";
+    std::ofstream(work / "passing.txt") << passing_gates;
     const Result r = run(small + " --skip mesh --out " + (work / "nomesh").string() + " --gates " + (work / "passing.txt").string());
     ASSERT_TRUE(fs::exists(work / "nomesh" / "summary.json")) << r.output;
     const json s = read_json(work / "nomesh" / "summary.json");

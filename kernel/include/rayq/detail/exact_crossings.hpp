@@ -315,7 +315,8 @@ RAYQ_INLINE bool within_static_range(T x)
 template <class T>
 RAYQ_INLINE bool within_static_range(const Vec3<T>& v)
 {
-    return within_static_range(v.x) && within_static_range(v.y) && within_static_range(v.z);
+    if constexpr (std::is_same_v<T, float>) return true;
+    else return zero_or_within_exact_range(v);
 }
 template <class... X>
 RAYQ_INLINE bool all_within_static_range(const X&... x)
