@@ -178,6 +178,93 @@ TYPED_TEST(AccurateContractTest, ExactlyMissedNeverHidesACrossing)
     EXPECT_EQ(clear_answered, clear);
 }
 
+// The axial primitives' certain-miss pre-test (batch::exactly_missed_axial) likewise, for its two
+// tests: lines at (1 ± 10^-k)·R from the axis line (the tube), along random directions, some within
+// 10^-j radians of the axis; and lines at (1 ± 10^-k)·√(|A|²/4 + R²) from the axis' midpoint (the
+// bounding sphere), through random points or tangent to the sphere at a point of the rim it
+// touches (those 1% inside cross the solid), from random origins at distances 1e-3 to 1e6.
+// Cylinders capped and open, a frustum and a cone with its apex at p1.
+template <class T>
+T radius_of(const Cylinder<T>& c, int) { return c.radius; }
+template <class T>
+T radius_of(const Cone<T>& c, int end) { return end == 0 ? c.r0 : c.r1; }
+
+TYPED_TEST(AccurateContractTest, ExactlyMissedAxialNeverHidesACrossing)
+{
+    using T = TypeParam;
+    std::mt19937_64 rng(12);
+    std::uniform_real_distribution<double> u(-1, 1), lg(-3, 6);
+    const Vec3<T> p0 = v3<T>(-0.3, -0.6, -0.9), p1 = v3<T>(0.5, 0.4, 0.8);
+    const Cylinder<T> capped{p0, p1, T(0.7), Caps::both}, open{p0, p1, T(0.7), Caps::none};
+    const Cone<T> frustum{p0, T(0.9), p1, T(0.4), Caps::both}, cone{p0, T(0.8), p1, T(0), Caps::none};
+    const double radii[4] = {0.7, 0.7, 0.9, 0.8};
+    const Vec3<double> a0{double(p0.x), double(p0.y), double(p0.z)}, a1{double(p1.x), double(p1.y), double(p1.z)};
+    const Vec3<double> axis = normalize(a1 - a0), mid = 0.5 * (a0 + a1);
+    const double half = 0.5 * length(a1 - a0);
+    const auto unit_perpendicular = [&](const Vec3<double>& to) {
+        Vec3<double> v{u(rng), u(rng), u(rng)};
+        return normalize(v - dot(v, to) * to);
+    };
+    // Whether the pre-test answers, and if it does, the exact path's crossings.
+    const auto missed = [&](int which, const Ray<T>& r, int& crossings) {
+        const auto check = [&](const auto& prim, bool capped_prim, detail::CapEnds ends) {
+            if (!batch::exactly_missed_axial(r, prim.p0, prim.p1, radius_of(prim, 0), radius_of(prim, 1))) return false;
+            crossings = detail::exact_curved_crossings(r, prim, true, capped_prim, ends, 2).count;
+            return true;
+        };
+        if (which == 0) return check(capped, true, {true, true});
+        if (which == 1) return check(open, false, {true, true});
+        if (which == 2) return check(frustum, true, {true, true});
+        return check(cone, false, {true, false});
+    };
+    const int kmax = std::is_same_v<T, float> ? 8 : 16;
+    int answered = 0, clear = 0, clear_answered = 0, rim_cuts = 0, rim_cuts_answered = 0;
+    for (int i = 0; i < 60000; ++i) {
+        const int which = i % 4, family = (i / 4) % 3;  // 0 tube, 1 sphere, 2 sphere at a rim
+        // The rim family: the capped cylinder at either end, the frustum at its wider end (p0).
+        if (family == 2 && (which == 1 || which == 3)) continue;
+        const double radius = radii[which], sphere = std::sqrt(half * half + radius * radius);
+        Vec3<double> e{u(rng), u(rng), u(rng)}, n, foot;
+        double reach;
+        if (family == 0) {  // n ⟂ axis and e: the line's distance from the axis line is its offset along n
+            if (rng() % 4 == 0) e = axis + std::pow(10.0, -double(1 + rng() % 8)) * e;
+            e = normalize(e);
+            n = cross(axis, e);
+            if (!(length(n) > 1e-12)) continue;
+            n = normalize(n), foot = a0 + u(rng) * 3.0 * axis, reach = radius;
+        } else if (family == 1) {
+            e = normalize(e), n = unit_perpendicular(e), foot = mid, reach = sphere;
+        } else {
+            foot = (which == 0 && rng() % 2 ? a1 : a0) + radius * unit_perpendicular(axis);  // on the rim
+            n = normalize(foot - mid), e = unit_perpendicular(n), foot = mid, reach = sphere;
+        }
+        const int k = 1 + int(rng() % kmax);
+        const bool outside = rng() % 2;
+        const double rho = reach * (1 + (outside ? 1 : -1) * std::pow(10.0, -k));
+        const double s = std::pow(10.0, lg(rng)) * (rng() % 2 ? 1 : -1);
+        const Vec3<double> o = foot + rho * n - s * e;
+        const Ray<T> r{Vec3<T>{T(o.x), T(o.y), T(o.z)}, Vec3<T>{T(e.x), T(e.y), T(e.z)}};
+        // Beyond 1.01·reach, from within 100 units, not within 10^-3 of the axis' direction: the
+        // rounding of the origin and direction moves the line far less.
+        const bool near = k <= 2 && std::abs(s) <= 100;
+        const bool clear_miss = outside && near && (family != 0 || length(cross(axis, e)) > 1e-3);
+        const bool clear_rim_cut = family == 2 && !outside && near;  // crosses the solid
+        clear += clear_miss;
+        rim_cuts += clear_rim_cut;
+        int crossings = 0;
+        if (!missed(which, r, crossings)) continue;
+        ++answered;
+        clear_answered += clear_miss;
+        rim_cuts_answered += clear_rim_cut;
+        EXPECT_EQ(crossings, 0) << "primitive " << which << " family " << family << " k=" << k << " s=" << s;
+    }
+    EXPECT_GT(clear, 1000);
+    EXPECT_EQ(clear_answered, clear);
+    EXPECT_GT(answered, clear);  // ... and some lines closer than 1.01·reach are answered too
+    EXPECT_GT(rim_cuts, 100);
+    EXPECT_EQ(rim_cuts_answered, 0);
+}
+
 // The far, small sphere of the notes: all three policies hit; only accurate is correctly rounded
 // in float (fast is off by ~2 units of t, see SphereTest.FarAwaySmallSphere).
 TYPED_TEST(AccurateContractTest, FarSphereAlongAnOddDirection)

@@ -93,8 +93,8 @@ inline detail::Residual<N> residual(const Cone<T>& cone, const Vec3<N>& o, const
 template <class T>
 inline Crossings<T> crossings(accurate_policy, const Ray<T>& ray, const Cone<T>& cone, int limit = 2)
 {
-    // Certain misses first, by the batch filters' exact test on the bounding sphere (as for the sphere).
-    if (batch::exactly_missed(ray, batch::axial_bound(cone.p0, cone.p1, cone.r0, cone.r1))) return {};
+    // Certain misses first: the tube around the axis, then the bounding sphere (as for the cylinder).
+    if (batch::exactly_missed_axial(ray, cone.p0, cone.p1, cone.r0, cone.r1)) return {};
     return detail::exact_curved_crossings(ray, cone, true, cone.caps == Caps::both, {cone.r0 > T(0), cone.r1 > T(0)}, limit);
 }
 

@@ -103,11 +103,12 @@ inline detail::Residual<N> residual(const Cylinder<T>& cyl, const Vec3<N>& o, co
 }
 
 // Accurate: exact decisions, correctly rounded t (detail/exact_crossings.hpp), after the certain
-// misses of the batch filters' exact test on the bounding sphere (as for the sphere).
+// misses of the tube around the axis and of the batch filters' exact test on the bounding sphere
+// (batch::exactly_missed_axial).
 template <class T>
 inline Crossings<T> crossings(accurate_policy, const Ray<T>& ray, const Cylinder<T>& cyl, int limit = 2)
 {
-    if (batch::exactly_missed(ray, batch::axial_bound(cyl.p0, cyl.p1, cyl.radius, cyl.radius))) return {};
+    if (batch::exactly_missed_axial(ray, cyl.p0, cyl.p1, cyl.radius, cyl.radius)) return {};
     return detail::exact_curved_crossings(ray, cyl, true, cyl.caps == Caps::both, {true, true}, limit);
 }
 
