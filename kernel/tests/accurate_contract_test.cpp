@@ -265,6 +265,32 @@ TYPED_TEST(AccurateContractTest, ExactlyMissedAxialNeverHidesACrossing)
     EXPECT_EQ(rim_cuts_answered, 0);
 }
 
+// A ray leaving a flat primitive's plane: its root is behind the origin, so a window from 0 (or
+// later) misses without rounding it, and a window reaching back past the root reports it,
+// correctly rounded.
+TYPED_TEST(AccurateContractTest, RootBehindTheWindow)
+{
+    using T = TypeParam;
+    const Plane<T> plane{v3<T>(0.1, 0.2, 1.0 / 3.0), v3<T>(0.2, 0.3, 0.93)};
+    const Triangle<T> triangle{v3<T>(-1, -1, 0.3), v3<T>(1, -1, 0.35), v3<T>(0, 1, 0.4)};
+    const Vec3<T> d = v3<T>(0.1, -0.05, 1);  // away from both: their roots are at t < 0
+    for (int i = 0; i < 2; ++i) {
+        const Ray<T> ahead{v3<T>(0.05, 0.1, 0.5), d};
+        const Ray<T> leaving = i == 0 ? ahead : Ray<T>{ahead.origin, ahead.direction, T(0.25), T(3)};
+        const auto check = [&](const auto& prim, const char* name) {
+            EXPECT_FALSE(intersect(accurate, leaving, prim)) << name;
+            Ray<T> back = leaving;
+            back.tmin = T(-10);
+            const auto h = intersect(accurate, back, prim);
+            ASSERT_TRUE(h) << name;
+            EXPECT_LT(h->t, T(0)) << name;
+            EXPECT_LE(ulps_off(prim, back, *h), 0.5) << name;
+        };
+        check(plane, "plane");
+        check(triangle, "triangle");
+    }
+}
+
 // The far, small sphere of the notes: all three policies hit; only accurate is correctly rounded
 // in float (fast is off by ~2 units of t, see SphereTest.FarAwaySmallSphere).
 TYPED_TEST(AccurateContractTest, FarSphereAlongAnOddDirection)

@@ -928,6 +928,11 @@ RAYQ_FLATTEN inline std::optional<Crossings<T>> quick_flat_crossing(const Ray<T>
     // A certain miss of the trim needs no t (most rays that reach a flat primitive's plane miss it;
     // a double t costs a Newton step).
     if (plane.inside < 0) return Crossings<T>{};
+    // A root certainly behind a window that starts at or after 0 needs no t either: the root −f/df
+    // is negative where f and df certainly have one sign (the misses of a plane, rays leaving it,
+    // took a double's Newton step: 983 against 643 instructions per miss under `fast`, callgrind,
+    // SSE2).
+    if (ray.tmin >= T(0) && certain_sign(plane.f) == slope) return Crossings<T>{};
     std::optional<T> t;
     if constexpr (std::is_same_v<T, float>) t = rounded_between_midpoints<float>(quotient(-bounded(plane.f), bounded(plane.df)));
     else t = quick_newton_rounded<T>(coef, 0, 0, -plane.f.v / plane.df.v);
