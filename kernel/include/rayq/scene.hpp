@@ -80,7 +80,7 @@ struct SceneStore {
     // One or two primitives: their scalar queries cost less than the filter's set-up and one
     // lane group (callgrind, one float sphere under fast: 167 of the scene's 364 instructions
     // per ray were filter and bookkeeping, against 197 for the scalar query; accurate answers
-    // certain misses with batch::exactly_missed at about the filter's cost). That direct loop is
+    // certain misses with batch::exactly_missed_sphere at about the filter's cost). That direct loop is
     // inlined into the query and the filtered one is not: clang left the whole scan out of line,
     // and a one-sphere scene's nearest() ran at 34 M rays/s against 68 M inlined, while inlining
     // the filtered loop too cost 17% at 16 spheres (bench of 4,096 rays, -O3 -march=native).

@@ -64,13 +64,12 @@ inline detail::Residual<N> residual(const Sphere<T>& s, const Vec3<N>& o, const 
 }
 
 // Accurate: exact decisions, correctly rounded t (detail/exact_crossings.hpp). A ray whose line
-// certainly passes the sphere, or whose window certainly misses it, is answered first by the batch
-// filters' exact test on one lane (batch/filter_core.hpp): ~10× cheaper than the exact path's
-// filtered predicates on such misses.
+// certainly passes the sphere is answered first (batch::exactly_missed_sphere): ~10× cheaper than
+// the exact path's filtered predicates on such misses.
 template <class T>
 inline Crossings<T> crossings(accurate_policy, const Ray<T>& ray, const Sphere<T>& s, int limit = 2)
 {
-    if (batch::exactly_missed(ray, batch::BoundingSphere<T>{s.center, s.radius, s.radius})) return {};
+    if (batch::exactly_missed_sphere(ray, s.center, s.radius)) return {};
     return detail::exact_curved_crossings(ray, s, false, false, {false, false}, limit);
 }
 

@@ -2,7 +2,7 @@
 // values (FilterRay, SphereFilterRay, BoundFilterRay), the bounding-sphere constants (BoundSlack)
 // and the one test both batch patterns share (bound_keep), on packs of lanes or on one T. The scalar
 // accurate path of the sphere uses the same test to answer certain misses before its exact
-// arithmetic (exactly_missed); batch/sphere.hpp and batch/bounding_sphere.hpp build on it.
+// arithmetic (exactly_missed_sphere, exactly_missed_axial); batch/sphere.hpp and batch/bounding_sphere.hpp build on it.
 #pragma once
 
 #include <algorithm>
@@ -301,68 +301,77 @@ BoundingSphere<T> axial_bound(const Vec3<T>& p0, const Vec3<T>& p1, T r0, T r1)
     return detail::to_bound<T>((a + b) * 0.5, std::sqrt(half * half + r * r), detail::smallest_nonzero({2 * half, double(r0), double(r1)}));
 }
 
-// Whether `accurate` certainly reports no crossing of a primitive inside `b`: the ray's line
-// passes the bound farther than the rounding of this test can hide. One lane, in the exact
-// component's precision (hardware double for float inputs) and without division or square root:
-// ℓ²·|d|² = |u × d|² against reach²·|d|², u = o − c. The computed |u × d|² errs by at most ~20
-// unit roundoffs of |u|²·|d|² (one rounding of each u_i, two per cross component, three per sum;
-// pbrt-v4 "Managing Rounding Error" §6.8.1 bounds), covered by k = 256 unit roundoffs; the
-// bound's own center rounding is in reach. The range guards are the filters' (BoundSlack), plus
-// |d|² within 2^±600 so that no product underflows or overflows for double inputs. The window is
-// not tested: the scene and stream filters test it before they call the scalar path.
-template <class T>
-inline bool exactly_missed(const Ray<T>& ray, const BoundingSphere<T>& b)
+// The certain-miss tests of the scalar accurate path: whether `accurate` certainly reports no
+// crossing of a primitive, because the ray's line passes a ball or tube that holds it farther than
+// the rounding of the test can hide. One lane, on the primitive's own inputs in W (hardware double
+// for float inputs), without division or square root. Rounding (pbrt-v4 "Managing Rounding Error"
+// §6.8.1 bounds: one rounding of each difference, two per cross component, three per sum):
+//   a ball of center o − m, radius² R²: |m × d|²/|d|² is the line's squared distance from the
+//     center; the computed |m × d|² errs by at most ~20 unit roundoffs of |m|²·|d|², plus 2·|δm|
+//     ·(|m| + |δm|)·|d|² for an error δm in m;
+//   the tube of radius R around the line through p0 along A: (u·n)²/|n|² is the line's squared
+//     distance from it, u = o − p0, n = d × A; computed, u·n errs by at most ~9 unit roundoffs of
+//     |u|·|d|·|A| and |n|² by ~12 of |d|²·|A|², so (|u·n| − e)² > R²·(|n|² + e') needs at most
+//     18·|u|²·|d|²·|A|² + 12·R²·|d|²·|A|² unit roundoffs more than the computed comparison.
+// k = 256 unit roundoffs of the named terms covers each with a wide margin, and each comparison's
+// own rounding. With every squared length and |d|² in 2^±200 no product overflows and an
+// underflowing one (a tiny component) errs by far less than that slack; outside that range, or
+// with NaN or infinite inputs, the tests answer nothing. (The scene and stream filters test the
+// window before they call the scalar path; these do not.)
+namespace certain_miss {
+template <class W>
+constexpr W miss_slack = W(256) * (std::numeric_limits<W>::epsilon() / 2);
+template <class W>
+RAYQ_INLINE bool moderate_square(W x) { return x >= W(0x1p-200) && x <= W(0x1p200); }
+// The ball: |m × d|² > (R²·(1 + k) + k·(|m|² + ss))·|d|², where ss is 0 for an m with one rounding
+// per component and |A|² for m = u − A/2.
+template <class W>
+RAYQ_INLINE bool line_passes_ball(const Vec3<W>& m, const Vec3<W>& d, W dd, W rr, W ss)
 {
-    using S = BoundSlack<T>;
-    using W = typename detail::ExactComponent<T>::type;
-    const T reach = S::reach(b);
-    if (!(reach < std::numeric_limits<T>::infinity())) return false;
-    const W ux = W(ray.origin.x) - W(b.center.x), uy = W(ray.origin.y) - W(b.center.y), uz = W(ray.origin.z) - W(b.center.z);
-    const W dx = ray.direction.x, dy = ray.direction.y, dz = ray.direction.z;
-    const W uu = ux * ux + uy * uy + uz * uz, dd = dx * dx + dy * dy + dz * dz;
-    if (!(uu < W(S::far(b)) && dd > W(0x1p-600) && dd < W(0x1p600))) return false;
-    const W cx = uy * dz - uz * dy, cy = uz * dx - ux * dz, cz = ux * dy - uy * dx;
-    const W ll_dd = cx * cx + cy * cy + cz * cz;
-    constexpr W k = W(256) * (std::numeric_limits<W>::epsilon() / 2);
-    const W rr = W(reach) * W(reach);
-    return ll_dd > (rr * (W(1) + k) + k * uu) * dd;
+    constexpr W k = miss_slack<W>;
+    const Vec3<W> md = cross(m, d);
+    return dot(md, md) > (rr * (W(1) + k) + k * (dot(m, m) + ss)) * dd;
+}
+template <class T>
+RAYQ_INLINE Vec3<typename rayq::detail::ExactComponent<T>::type> lift_exact(const Vec3<T>& v)
+{
+    using W = typename rayq::detail::ExactComponent<T>::type;
+    return {W(v.x), W(v.y), W(v.z)};
+}
+}  // namespace certain_miss
+
+// A sphere: the ball itself (m = o − c).
+template <class T>
+inline bool exactly_missed_sphere(const Ray<T>& ray, const Vec3<T>& center, T radius)
+{
+    using W = typename rayq::detail::ExactComponent<T>::type;
+    const Vec3<W> m = certain_miss::lift_exact(ray.origin) - certain_miss::lift_exact(center), d = certain_miss::lift_exact(ray.direction);
+    const W rr = W(radius) * W(radius), dd = dot(d, d);
+    if (!(certain_miss::moderate_square(dot(m, m)) && certain_miss::moderate_square(dd) && certain_miss::moderate_square(rr))) return false;
+    return certain_miss::line_passes_ball(m, d, dd, rr, W(0));
 }
 
-// Whether `accurate` certainly reports no crossing of an axial primitive (cylinder, cone) from p0
-// to p1 whose radii are at most R = max(|r0|, |r1|), by two line tests in W without division or
-// square root (exactly_missed's, on the primitive's own inputs instead of a rounded bound):
-//   the tube: the line passes the infinite tube of radius R around the axis line, which holds the
-//     side and both caps: (u·n)² > R²·|n|², u = o − p0, A = p1 − p0, n = d × A (the line's
-//     distance from the axis is |u·n|/|n|; a line parallel to the axis, n = 0, is never answered);
-//   the bounding sphere: center p0 + A/2, radius² |A|²/4 + R²: |m × d|² > (|A|²/4 + R²)·|d|²,
-//     m = u − A/2 (|m × d|/|d| is the line's distance from the center).
-// Of a short, wide capped cylinder's misses the tube answers 80% and the sphere 52%, together
-// 95% (without them each took the quick lane's three parts, ~1,600 instructions).
-// Rounding (pbrt-v4 "Managing Rounding Error" §6.8.1 bounds): one rounding of each u_i and A_i, two
-// per cross component, three per sum leave u·n within ~9 unit roundoffs of |u|·|d|·|A|, |n|² within
-// ~12 of |d|²·|A|², and m within 2 of |m| + |A|, |m × d|² within ~30 of (|m|² + |A|²)·|d|²; so
-// (|u·n| − e)² > R²·(|n|² + e') needs at most 18·|u|²·|d|²·|A|² + 12·R²·|d|²·|A|² unit roundoffs
-// more than the computed comparison, and the sphere's ~30·(|m|² + |A|²)·|d|²: k = 256 of
-// (|u|² + R²)·|d|²·|A|² and of (|m|² + |A|²)·|d|² covers them and each comparison's own rounding.
-// With |u|², |A|², |d|² and R² in 2^±200 no product overflows and an underflowing one (a tiny
-// component) errs by far less than that slack; outside that range, or with NaN or infinite
-// inputs, neither test answers.
+// An axial primitive (cylinder, cone) from p0 to p1 whose radii are at most R = max(|r0|, |r1|):
+// the tube of radius R around its axis line, which holds the side and both caps, then its bounding
+// ball, of center p0 + A/2 and radius² |A|²/4 + R² (A = p1 − p0; m = u − A/2 errs by at most 2
+// unit roundoffs of |m| + |A|). Of a short, wide capped cylinder's misses the tube answers 80% and
+// the ball 52%, together 95% (without them each took the quick lane's three parts, ~1,600
+// instructions). A line parallel to the axis (n = 0) is left to the ball.
 template <class T>
 inline bool exactly_missed_axial(const Ray<T>& ray, const Vec3<T>& p0, const Vec3<T>& p1, T r0, T r1)
 {
-    using W = typename detail::ExactComponent<T>::type;
-    const auto lift = [](const Vec3<T>& v) { return Vec3<W>{W(v.x), W(v.y), W(v.z)}; };
-    const Vec3<W> a = lift(p1) - lift(p0), u = lift(ray.origin) - lift(p0), d = lift(ray.direction);
+    using W = typename rayq::detail::ExactComponent<T>::type;
+    const Vec3<W> a = certain_miss::lift_exact(p1) - certain_miss::lift_exact(p0), u = certain_miss::lift_exact(ray.origin) - certain_miss::lift_exact(p0),
+                  d = certain_miss::lift_exact(ray.direction);
     const W r = std::max(std::abs(W(r0)), std::abs(W(r1))), rr = r * r;
     const W uu = dot(u, u), aa = dot(a, a), dd = dot(d, d);
-    const auto moderate = [](W x) { return x >= W(0x1p-200) && x <= W(0x1p200); };
-    if (!(moderate(uu) && moderate(aa) && moderate(dd) && moderate(rr))) return false;
-    constexpr W k = W(256) * (std::numeric_limits<W>::epsilon() / 2);
+    if (!(certain_miss::moderate_square(uu) && certain_miss::moderate_square(aa) && certain_miss::moderate_square(dd) && certain_miss::moderate_square(rr)))
+        return false;
+    constexpr W k = certain_miss::miss_slack<W>;
     const Vec3<W> n = cross(d, a);
     const W un = dot(u, n);
     if (un * un > rr * dot(n, n) * (W(1) + k) + k * (uu + rr) * (dd * aa)) return true;
-    const Vec3<W> m = u - a * W(0.5), md = cross(m, d);
-    return dot(md, md) > ((W(0.25) * aa + rr) * (W(1) + k) + k * (dot(m, m) + aa)) * dd;
+    return certain_miss::line_passes_ball(u - a * W(0.5), d, dd, W(0.25) * aa + rr, aa);
 }
 
 }  // namespace rayq::batch
