@@ -103,8 +103,7 @@ inline detail::Residual<N> residual(const Cylinder<T>& cyl, const Vec3<N>& o, co
 }
 
 // Accurate: exact decisions, correctly rounded t (detail/exact_crossings.hpp), after the certain
-// misses of the tube around the axis and of the batch filters' exact test on the bounding sphere
-// (batch::exactly_missed_axial).
+// misses of the tube around the axis and of the bounding sphere (batch::exactly_missed_axial).
 template <class T>
 inline Crossings<T> crossings(accurate_policy, const Ray<T>& ray, const Cylinder<T>& cyl, int limit = 2)
 {

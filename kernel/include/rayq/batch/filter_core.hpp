@@ -1,8 +1,9 @@
 // rayq — the arithmetic of the batch filters, independent of the primitive types: the per-ray
 // values (FilterRay, SphereFilterRay, BoundFilterRay), the bounding-sphere constants (BoundSlack)
-// and the one test both batch patterns share (bound_keep), on packs of lanes or on one T. The scalar
-// accurate path of the sphere uses the same test to answer certain misses before its exact
-// arithmetic (exactly_missed_sphere, exactly_missed_axial); batch/sphere.hpp and batch/bounding_sphere.hpp build on it.
+// and the one test both batch patterns share (bound_keep), on packs of lanes or on one T; and the
+// one-lane tests with which the scalar accurate path answers certain misses before its exact
+// arithmetic (exactly_missed_sphere, exactly_missed_axial). batch/sphere.hpp and
+// batch/bounding_sphere.hpp build on it.
 #pragma once
 
 #include <algorithm>
@@ -345,9 +346,10 @@ template <class T>
 inline bool exactly_missed_sphere(const Ray<T>& ray, const Vec3<T>& center, T radius)
 {
     using W = typename rayq::detail::ExactComponent<T>::type;
-    const Vec3<W> m = certain_miss::lift_exact(ray.origin) - certain_miss::lift_exact(center), d = certain_miss::lift_exact(ray.direction);
+    using certain_miss::lift_exact, certain_miss::moderate_square;
+    const Vec3<W> m = lift_exact(ray.origin) - lift_exact(center), d = lift_exact(ray.direction);
     const W rr = W(radius) * W(radius), dd = dot(d, d);
-    if (!(certain_miss::moderate_square(dot(m, m)) && certain_miss::moderate_square(dd) && certain_miss::moderate_square(rr))) return false;
+    if (!(moderate_square(dot(m, m)) && moderate_square(dd) && moderate_square(rr))) return false;
     return certain_miss::line_passes_ball(m, d, dd, rr, W(0));
 }
 
@@ -361,12 +363,11 @@ template <class T>
 inline bool exactly_missed_axial(const Ray<T>& ray, const Vec3<T>& p0, const Vec3<T>& p1, T r0, T r1)
 {
     using W = typename rayq::detail::ExactComponent<T>::type;
-    const Vec3<W> a = certain_miss::lift_exact(p1) - certain_miss::lift_exact(p0), u = certain_miss::lift_exact(ray.origin) - certain_miss::lift_exact(p0),
-                  d = certain_miss::lift_exact(ray.direction);
+    using certain_miss::lift_exact, certain_miss::moderate_square;
+    const Vec3<W> a = lift_exact(p1) - lift_exact(p0), u = lift_exact(ray.origin) - lift_exact(p0), d = lift_exact(ray.direction);
     const W r = std::max(std::abs(W(r0)), std::abs(W(r1))), rr = r * r;
     const W uu = dot(u, u), aa = dot(a, a), dd = dot(d, d);
-    if (!(certain_miss::moderate_square(uu) && certain_miss::moderate_square(aa) && certain_miss::moderate_square(dd) && certain_miss::moderate_square(rr)))
-        return false;
+    if (!(moderate_square(uu) && moderate_square(aa) && moderate_square(dd) && moderate_square(rr))) return false;
     constexpr W k = certain_miss::miss_slack<W>;
     const Vec3<W> n = cross(d, a);
     const W un = dot(u, n);
