@@ -333,12 +333,6 @@ RAYQ_INLINE bool line_passes_ball(const Vec3<W>& m, const Vec3<W>& d, W dd, W rr
     const Vec3<W> md = cross(m, d);
     return dot(md, md) > (rr * (W(1) + k) + k * (dot(m, m) + ss)) * dd;
 }
-template <class T>
-RAYQ_INLINE Vec3<typename rayq::detail::ExactComponent<T>::type> lift_exact(const Vec3<T>& v)
-{
-    using W = typename rayq::detail::ExactComponent<T>::type;
-    return {W(v.x), W(v.y), W(v.z)};
-}
 }  // namespace certain_miss
 
 // A sphere: the ball itself (m = o − c).
@@ -346,8 +340,8 @@ template <class T>
 inline bool exactly_missed_sphere(const Ray<T>& ray, const Vec3<T>& center, T radius)
 {
     using W = typename rayq::detail::ExactComponent<T>::type;
-    using certain_miss::lift_exact, certain_miss::moderate_square;
-    const Vec3<W> m = lift_exact(ray.origin) - lift_exact(center), d = lift_exact(ray.direction);
+    using certain_miss::moderate_square, rayq::detail::lift;
+    const Vec3<W> m = lift<W>(ray.origin) - lift<W>(center), d = lift<W>(ray.direction);
     const W rr = W(radius) * W(radius), dd = dot(d, d);
     if (!(moderate_square(dot(m, m)) && moderate_square(dd) && moderate_square(rr))) return false;
     return certain_miss::line_passes_ball(m, d, dd, rr, W(0));
@@ -363,8 +357,8 @@ template <class T>
 inline bool exactly_missed_axial(const Ray<T>& ray, const Vec3<T>& p0, const Vec3<T>& p1, T r0, T r1)
 {
     using W = typename rayq::detail::ExactComponent<T>::type;
-    using certain_miss::lift_exact, certain_miss::moderate_square;
-    const Vec3<W> a = lift_exact(p1) - lift_exact(p0), u = lift_exact(ray.origin) - lift_exact(p0), d = lift_exact(ray.direction);
+    using certain_miss::moderate_square, rayq::detail::lift;
+    const Vec3<W> a = lift<W>(p1) - lift<W>(p0), u = lift<W>(ray.origin) - lift<W>(p0), d = lift<W>(ray.direction);
     const W r = std::max(std::abs(W(r0)), std::abs(W(r1))), rr = r * r;
     const W uu = dot(u, u), aa = dot(a, a), dd = dot(d, d);
     if (!(moderate_square(uu) && moderate_square(aa) && moderate_square(dd) && moderate_square(rr))) return false;
