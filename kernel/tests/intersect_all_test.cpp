@@ -40,6 +40,10 @@ TYPED_TEST(IntersectAllTest, EntryExitPairsInOrder)
             EXPECT_EQ(all[0].hit.t, first->t);
             EXPECT_EQ(all[0].hit.part, first->part);
             EXPECT_EQ(all[0].entering, first->front_face);
+            // The whole record: a closest hit computes no more crossings than it needs (accurate's
+            // quick lane rounds no exit for it), and must not differ for that.
+            EXPECT_EQ(all[0].hit.t_error, first->t_error);
+            EXPECT_EQ(all[0].hit.normal, first->normal);
             for (int k = 1; k < all.size(); ++k) EXPECT_LE(all[k - 1].hit.t, all[k].hit.t);
             for (const auto& p : all) expect_well_formed(r, p.hit);
             // From outside (origin at distance > 4·size from most solids is not guaranteed; use the

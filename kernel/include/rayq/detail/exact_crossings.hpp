@@ -834,12 +834,14 @@ RAYQ_FLATTEN inline std::optional<Crossings<T>> quick_solid_crossings(const Ray<
         // the general span logic below is not compiled into a sphere's lane).
         return std::nullopt;
     } else {
-        // Every crossing, whatever the limit: the closest hit and all crossings must take the same
-        // lane, or their records could differ in t_error (found by the sphere libFuzzer harness's
-        // intersect_all.first_is_intersect invariant, with a direction component 2^-63 beside 1).
-        Crossings<T> out = solid_crossings<T>(solid, axial, capped, ends, 2);
+        // Only the crossings asked for: a closest hit rounds no exit (a double's costs a Newton
+        // step). The lane may then answer a closest hit whose exit it could not have decided;
+        // the exact path gives the same record (every accurate crossing is the exact root
+        // correctly rounded, its t_error one ulp), so the closest hit and all crossings still
+        // agree (MagnitudeFilter.ClosestHitAndAllCrossingsAgreeInEveryField). Until the exact path
+        // was exact at every magnitude they did not: the lane decided both ends whatever the limit.
+        Crossings<T> out = solid_crossings<T>(solid, axial, capped, ends, limit);
         if (undecided) return std::nullopt;
-        out.count = std::min(out.count, limit);
         return out;
     }
 }
