@@ -70,6 +70,41 @@ TEST(MagnitudeFilter, ValueAndMagnitudeLanesAreTheScalarEvaluations)
     }
 }
 
+// The range the quick lanes and the exact expansions take inputs in, decided on the bits: zero
+// or a magnitude in [2^-64, 2^64], both ends included; NaN, infinities and subnormals out.
+template <class T>
+void expect_exact_range_boundaries()
+{
+    using detail::next_down;
+    using detail::next_up;
+    using detail::zero_or_within_exact_range;
+    const T lo = T(0x1p-64), hi = T(0x1p64), inf = std::numeric_limits<T>::infinity();
+    for (const T sign : {T(1), T(-1)}) {
+        EXPECT_TRUE(zero_or_within_exact_range(sign * T(0)));
+        EXPECT_TRUE(zero_or_within_exact_range(sign * lo));
+        EXPECT_TRUE(zero_or_within_exact_range(sign * hi));
+        EXPECT_TRUE(zero_or_within_exact_range(sign * next_up(lo)));
+        EXPECT_TRUE(zero_or_within_exact_range(sign * next_down(hi)));
+        EXPECT_TRUE(zero_or_within_exact_range(sign * T(1)));
+        EXPECT_FALSE(zero_or_within_exact_range(sign * next_down(lo)));
+        EXPECT_FALSE(zero_or_within_exact_range(sign * next_up(hi)));
+        EXPECT_FALSE(zero_or_within_exact_range(sign * std::numeric_limits<T>::denorm_min()));
+        EXPECT_FALSE(zero_or_within_exact_range(sign * std::numeric_limits<T>::min()));
+        EXPECT_FALSE(zero_or_within_exact_range(sign * std::numeric_limits<T>::max()));
+        EXPECT_FALSE(zero_or_within_exact_range(sign * inf));
+    }
+    EXPECT_FALSE(zero_or_within_exact_range(std::numeric_limits<T>::quiet_NaN()));
+    EXPECT_FALSE(zero_or_within_exact_range(-std::numeric_limits<T>::quiet_NaN()));
+    EXPECT_TRUE(zero_or_within_exact_range(Vec3<T>{T(0), lo, -hi}));
+    EXPECT_FALSE(zero_or_within_exact_range(Vec3<T>{T(1), T(1), next_up(hi)}));
+    EXPECT_FALSE(zero_or_within_exact_range(Vec3<T>{next_down(lo), T(1), T(1)}));
+}
+TEST(MagnitudeFilter, ExactRangeIncludesZeroAndBothEnds)
+{
+    expect_exact_range_boundaries<float>();
+    expect_exact_range_boundaries<double>();
+}
+
 // The sphere's coefficients at t = 0 and their discriminant, as the quick lane computes them, on
 // float inputs across 2^±40 and across float's whole range, and on near-tangent rays
 // (cancellation).

@@ -4,6 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
 #include <optional>
 #include <type_traits>
 #include <utility>
@@ -295,13 +298,28 @@ inline bool scale_exactly(T& x, int k)
 // [2^-64, 2^64] stays within double's exponent range (and float's, lifted to double).
 template <class T>
 constexpr bool within_exact_range(T magnitude) { return magnitude >= T(0x1p-64) && magnitude <= T(0x1p64); }
-// A value the exact expansions take as it is: zero, or its magnitude within range.
+// A value the exact expansions take as it is: zero, or its magnitude within range. Decided on its
+// bits, where |x|'s order is the unsigned integers' (NaN above infinity): one subtraction and
+// comparison, without branches, so that the checks of a primitive's ten or more inputs combine
+// with `&` into one test (callgrind, SSE2, accurate double hits: sphere 1,504 -> 1,479 instructions,
+// capped cylinder 3,441 -> 3,421).
 template <class T>
-RAYQ_INLINE bool zero_or_within_exact_range(T x) { return x == T(0) || within_exact_range(std::abs(x)); }
+RAYQ_INLINE bool zero_or_within_exact_range(T x)
+{
+    static_assert(std::numeric_limits<T>::is_iec559 && (sizeof(T) == 4 || sizeof(T) == 8));
+    using Bits = std::conditional_t<sizeof(T) == 4, std::uint32_t, std::uint64_t>;
+    const auto bits = [](T y) {
+        Bits b;
+        std::memcpy(&b, &y, sizeof b);
+        return b;
+    };
+    const Bits magnitude = bits(x) & (bits(-T(0)) - 1), lo = bits(T(0x1p-64)), hi = bits(T(0x1p64));
+    return (magnitude - lo <= hi - lo) | (magnitude == 0);
+}
 template <class T>
 RAYQ_INLINE bool zero_or_within_exact_range(const Vec3<T>& v)
 {
-    return zero_or_within_exact_range(v.x) && zero_or_within_exact_range(v.y) && zero_or_within_exact_range(v.z);
+    return zero_or_within_exact_range(v.x) & zero_or_within_exact_range(v.y) & zero_or_within_exact_range(v.z);
 }
 
 // Whether the static filter (magnitude.hpp) may take these inputs: each 0 or within 2^±64, so that
@@ -321,7 +339,7 @@ RAYQ_INLINE bool within_static_range(const Vec3<T>& v)
 template <class... X>
 RAYQ_INLINE bool all_within_static_range(const X&... x)
 {
-    return (within_static_range(x) && ...);
+    return (within_static_range(x) & ...);
 }
 
 // newton_rounded for the quick lanes, whose inputs are within the static range: F in a double word
@@ -802,7 +820,7 @@ RAYQ_FLATTEN inline std::optional<Crossings<T>> quick_solid_crossings(const Ray<
 {
     if constexpr (!std::is_same_v<T, float> && is_magnitude<F>::value) {
         bool in_range = all_within_static_range(ray.origin, ray.direction);
-        each_length(prim, [&](const auto& x) { in_range = in_range && within_static_range(x); });
+        each_length(prim, [&](const auto& x) { in_range = in_range & within_static_range(x); });
         if (!in_range) return std::nullopt;
     }
     bool undecided = false;
