@@ -298,13 +298,13 @@ inline bool scale_exactly(T& x, int k)
 // [2^-64, 2^64] stays within double's exponent range (and float's, lifted to double).
 template <class T>
 constexpr bool within_exact_range(T magnitude) { return magnitude >= T(0x1p-64) && magnitude <= T(0x1p64); }
-// A value the exact expansions take as it is: zero, or its magnitude within range. Decided on its
-// bits, where |x|'s order is the unsigned integers' (NaN above infinity): one subtraction and
-// comparison, without branches, so that the checks of a primitive's ten or more inputs combine
-// with `&` into one test (callgrind, SSE2, accurate double hits: sphere 1,504 -> 1,479 instructions,
-// capped cylinder 3,441 -> 3,421).
+// x = ±0 or lo <= |x| <= hi (lo, hi positive and finite), decided on the bits, where |x|'s order
+// is the unsigned integers' (NaN above infinity): one subtraction and comparison, without
+// branches, so that the checks of a primitive's ten or more inputs combine with `&` into one test
+// (callgrind, SSE2, accurate double hits: sphere 1,504 -> 1,479 instructions, capped cylinder
+// 3,441 -> 3,421).
 template <class T>
-RAYQ_INLINE bool zero_or_within_exact_range(T x)
+RAYQ_INLINE bool zero_or_between(T x, T lo, T hi)
 {
     static_assert(std::numeric_limits<T>::is_iec559 && (sizeof(T) == 4 || sizeof(T) == 8));
     using Bits = std::conditional_t<sizeof(T) == 4, std::uint32_t, std::uint64_t>;
@@ -313,9 +313,12 @@ RAYQ_INLINE bool zero_or_within_exact_range(T x)
         std::memcpy(&b, &y, sizeof b);
         return b;
     };
-    const Bits magnitude = bits(x) & (bits(-T(0)) - 1), lo = bits(T(0x1p-64)), hi = bits(T(0x1p64));
-    return (magnitude - lo <= hi - lo) | (magnitude == 0);
+    const Bits magnitude = bits(x) & (bits(-T(0)) - 1);
+    return (magnitude - bits(lo) <= bits(hi) - bits(lo)) | (magnitude == 0);
 }
+// A value the exact expansions take as it is: zero, or its magnitude within range.
+template <class T>
+RAYQ_INLINE bool zero_or_within_exact_range(T x) { return zero_or_between(x, T(0x1p-64), T(0x1p64)); }
 template <class T>
 RAYQ_INLINE bool zero_or_within_exact_range(const Vec3<T>& v)
 {
@@ -608,8 +611,8 @@ public:
         // and an overflow leaves a bound that decides nothing.)
         const Residual<F>& r = r_;
         if constexpr (static_filter) {
-            const auto moderate = [](const F& x) { return x.m() == 0.0 || (x.m() >= 0x1p-400 && x.m() <= 0x1p400); };
-            if (!(r.a.d <= 6 && r.f.d <= 6 && r.df.d <= 7 && moderate(r.a) && moderate(r.df) && moderate(r.f))) undecided = true;
+            const auto moderate = [](const F& x) { return zero_or_between(x.m(), 0x1p-400, 0x1p400); };
+            if (!(r.a.d <= 6 && r.f.d <= 6 && r.df.d <= 7 && (moderate(r.a) & moderate(r.df) & moderate(r.f)))) undecided = true;
         }
         a_ = sign_of(r.a);
         if (a_.sign != 0) {
