@@ -319,10 +319,16 @@ RAYQ_INLINE bool zero_or_between(T x, T lo, T hi)
 // A value the exact expansions take as it is: zero, or its magnitude within range.
 template <class T>
 RAYQ_INLINE bool zero_or_within_exact_range(T x) { return zero_or_between(x, T(0x1p-64), T(0x1p64)); }
+// Every condition, each evaluated (no short circuit): one branch for all of them.
+template <class... Conditions>
+RAYQ_INLINE bool all_evaluated(Conditions... c)
+{
+    return (int(c) & ...) != 0;
+}
 template <class T>
 RAYQ_INLINE bool zero_or_within_exact_range(const Vec3<T>& v)
 {
-    return zero_or_within_exact_range(v.x) & zero_or_within_exact_range(v.y) & zero_or_within_exact_range(v.z);
+    return all_evaluated(zero_or_within_exact_range(v.x), zero_or_within_exact_range(v.y), zero_or_within_exact_range(v.z));
 }
 
 // Whether the static filter (magnitude.hpp) may take these inputs: each 0 or within 2^±64, so that
@@ -342,7 +348,7 @@ RAYQ_INLINE bool within_static_range(const Vec3<T>& v)
 template <class... X>
 RAYQ_INLINE bool all_within_static_range(const X&... x)
 {
-    return (within_static_range(x) & ...);
+    return all_evaluated(within_static_range(x)...);
 }
 
 // newton_rounded for the quick lanes, whose inputs are within the static range: F in a double word
@@ -612,7 +618,7 @@ public:
         const Residual<F>& r = r_;
         if constexpr (static_filter) {
             const auto moderate = [](const F& x) { return zero_or_between(x.m(), 0x1p-400, 0x1p400); };
-            if (!(r.a.d <= 6 && r.f.d <= 6 && r.df.d <= 7 && (moderate(r.a) & moderate(r.df) & moderate(r.f)))) undecided = true;
+            if (!(r.a.d <= 6 && r.f.d <= 6 && r.df.d <= 7 && all_evaluated(moderate(r.a), moderate(r.df), moderate(r.f)))) undecided = true;
         }
         a_ = sign_of(r.a);
         if (a_.sign != 0) {
@@ -823,7 +829,7 @@ RAYQ_FLATTEN inline std::optional<Crossings<T>> quick_solid_crossings(const Ray<
 {
     if constexpr (!std::is_same_v<T, float> && is_magnitude<F>::value) {
         bool in_range = all_within_static_range(ray.origin, ray.direction);
-        each_length(prim, [&](const auto& x) { in_range = in_range & within_static_range(x); });
+        each_length(prim, [&](const auto& x) { in_range = all_evaluated(in_range, within_static_range(x)); });
         if (!in_range) return std::nullopt;
     }
     bool undecided = false;
