@@ -105,6 +105,36 @@ TEST(MagnitudeFilter, ExactRangeIncludesZeroAndBothEnds)
     expect_exact_range_boundaries<double>();
 }
 
+// One root's interval (root_interval, for a caller that needs one) is the one root_intervals gives
+// for it among both, whatever the signs of a and b: the smaller root is q/a exactly when q took a's
+// sign from b.
+TEST(MagnitudeFilter, OneRootIntervalIsThatRootAmongBoth)
+{
+    using B = detail::Bounded<double>;
+    std::mt19937_64 rng(0x0A1);
+    int compared = 0, signs[2][2] = {};
+    for (int i = 0; i < 20000; ++i) {
+        const double av = random_number<double>(rng, -20, 20), bv = random_number<double>(rng, -20, 20),
+                     cv = random_number<double>(rng, -20, 20);
+        const B a{av, std::abs(av) * 0x1p-50}, b{bv, std::abs(bv) * 0x1p-50}, c{cv, std::abs(cv) * 0x1p-50};
+        const B disc = b * b - B{4.0} * a * c;
+        const auto both = detail::root_intervals(a, b, c, disc);
+        if (!both) continue;
+        ASSERT_TRUE(detail::two_certain_roots(a, disc));
+        const B q = detail::cancellation_free_q(b, disc);
+        for (int which = 0; which < 2; ++which) {
+            const auto one = detail::root_interval(a, b, c, q, which);
+            ASSERT_TRUE(one) << i;
+            EXPECT_EQ(one->v, (*both)[which].v) << i << " which " << which;
+            EXPECT_EQ(one->e, (*both)[which].e) << i << " which " << which;
+        }
+        ++compared, ++signs[av > 0][bv >= 0];
+    }
+    EXPECT_GT(compared, 5000);
+    for (const auto& row : signs)
+        for (const int n : row) EXPECT_GT(n, 1000);
+}
+
 // The sphere's coefficients at t = 0 and their discriminant, as the quick lane computes them, on
 // float inputs across 2^±40 and across float's whole range, and on near-tangent rays
 // (cancellation).

@@ -105,27 +105,56 @@ RAYQ_INLINE B quotient(const B& x, const B& y)
     return {v, grow(grow(x.e + grow(std::abs(v) * y.e)) / y_min + unit_roundoff<W> * std::abs(v))};
 }
 
+// q = −(b + sign(b)·√d)/2 for the discriminant d = b² − 4ac > 0 (certain), with its running error
+// bound (pbrt-v4 "Managing Rounding Error"): the cancellation-free form whose roots are q/a and
+// c/q (Ray Tracing Gems ch. 7). The sign is that of b's computed value; the roots are q/a and c/q
+// whichever sign b has exactly.
+template <class W>
+RAYQ_INLINE Bounded<W> cancellation_free_q(const Bounded<W>& b, const Bounded<W>& disc)
+{
+    using B = Bounded<W>;
+    const W s = std::sqrt(disc.v);
+    // |√D − √d| = |D − d|/(√D + √d) <= e/√d; s itself is one rounding from √d.
+    const B sq{s, grow(grow(disc.e / s) + unit_roundoff<W> * s)};
+    return B{W(-0.5)} * (b.v >= W(0) ? b + sq : b - sq);
+}
+// Whether a and d are certainly nonzero and positive: the roots are then real and distinct.
+template <class W>
+RAYQ_INLINE bool two_certain_roots(const Bounded<W>& a, const Bounded<W>& disc)
+{
+    return std::abs(a.v) > a.e && disc.v > W(0) && lower(disc) > W(0);
+}
+
 // Both roots of a·t² + b·t + c from bounded coefficients and discriminant d = b² − 4ac, each with
 // a certified interval, ascending; none unless a ≠ 0 and d > 0 are certain and the intervals are
-// disjoint (they must say which root is which). Running error bounds (pbrt-v4 "Managing Rounding
-// Error") through the cancellation-free formula q = −(b + sign(b)·√d)/2, roots q/a and c/q (Ray
-// Tracing Gems ch. 7).
+// disjoint (they must say which root is which).
 template <class W>
 RAYQ_INLINE std::optional<std::array<Bounded<W>, 2>> root_intervals(const Bounded<W>& a, const Bounded<W>& b, const Bounded<W>& c,
                                                                const Bounded<W>& disc)
 {
     using B = Bounded<W>;
     const W margin = W(1) - W(2) * unit_roundoff<W>;  // a difference of two W, rounded once
-    if (!(std::abs(a.v) > a.e) || !(disc.v > W(0) && lower(disc) > W(0))) return std::nullopt;
-    const W s = std::sqrt(disc.v);
-    // |√D − √d| = |D − d|/(√D + √d) <= e/√d; s itself is one rounding from √d.
-    const B sq{s, grow(grow(disc.e / s) + unit_roundoff<W> * s)};
-    const B q = B{W(-0.5)} * (b.v >= W(0) ? b + sq : b - sq);
+    if (!two_certain_roots(a, disc)) return std::nullopt;
+    const B q = cancellation_free_q(b, disc);
     if (!(std::abs(q.v) > q.e)) return std::nullopt;
     B r0 = quotient(q, a), r1 = quotient(c, q);
     if (r1.v < r0.v) std::swap(r0, r1);
     if (!((r1.v - r0.v) * margin > grow(r0.e + r1.e))) return std::nullopt;
     return std::array<B, 2>{r0, r1};
+}
+
+// One root (which: 0 smaller, 1 larger) with its certified interval, from q (cancellation_free_q),
+// for a caller that needs only one: one quotient instead of two. q/a = −(b + s·√d)/(2a) is the
+// smaller root exactly when s, the sign q took from b's computed value, is a's sign (the roots
+// differ: d > 0 is certain). Requires two_certain_roots; none where c/q is asked for and q is not
+// certainly nonzero.
+template <class W>
+RAYQ_INLINE std::optional<Bounded<W>> root_interval(const Bounded<W>& a, const Bounded<W>& b, const Bounded<W>& c, const Bounded<W>& q,
+                                                    int which)
+{
+    if ((b.v >= W(0)) == (a.v > W(0)) ? which == 0 : which == 1) return quotient(q, a);
+    if (!(std::abs(q.v) > q.e)) return std::nullopt;
+    return quotient(c, q);
 }
 
 // The midpoints between t and its two neighbours in T, exact in W (W has at least one more bit).

@@ -641,7 +641,8 @@ public:
     int sign_disc() const { return use(sign_disc_); }
 
     // The root `which` (0 smaller, 1 larger; a line's only root when a vanishes), correctly rounded.
-    // Both roots are rounded at once, from one pair of intervals.
+    // A float's both roots at once, from one pair of intervals (a solid's span logic orders both);
+    // a double's each by one Newton step, only when asked for.
     T rounded(int which) const
     {
         if constexpr (std::is_same_v<T, float>) {
@@ -656,13 +657,32 @@ public:
                 if (!t[0] || !t[1]) *undecided_ = true;
                 root_[0] = t[0].value_or(0.0f), root_[1] = t[1].value_or(0.0f);
             }
-        } else if (!done_[which]) {  // one Newton step per root, each only when asked for
+        } else if (!done_[which]) {
             done_[which] = true;
             const std::optional<T> t = newton_from_estimate(which);
             if (!t) *undecided_ = true;
             root_[which] = t.value_or(T(0));
         }
         return root_[which];
+    }
+    // The same for a caller that asks for each root at most once and may need only one (a sphere's
+    // closest hit): a float's root from its own interval alone (root_interval, one quotient).
+    // Callgrind, SSE2, accurate float sphere hits: 946 -> 859 instructions.
+    T rounded_alone(int which) const
+    {
+        if constexpr (std::is_same_v<T, float>) {
+            std::optional<float> t;
+            if (a_.sign == 0) {
+                if (sign_b() != 0) t = rounded_between_midpoints<float>(quotient(-bounded(r_.f), bounded(r_.df)));
+            } else if (two_certain_roots(bounded(r_.a), disc_)) {
+                const auto root = root_interval(bounded(r_.a), bounded(r_.df), bounded(r_.f), cancellation_free_q(bounded(r_.df), disc_), which);
+                if (root) t = rounded_between_midpoints<float>(*root);
+            }
+            if (!t) *undecided_ = true;
+            return t.value_or(0.0f);
+        } else {
+            return rounded(which);
+        }
     }
 
     // A certified interval around root `which` from the filter alone (root_intervals, quotient),
@@ -758,7 +778,8 @@ public:
     QuickSolid(const Ray<T>& ray, const Prim& prim, bool axial, bool& undecided)
         : ray_(ray), prim_(prim), undecided_(undecided), side_(part(Part::surface))
     {
-        if (axial) cap0_.emplace(part(Part::cap0)), cap1_.emplace(part(Part::cap1));
+        // Constructed in place: each part is a few hundred bytes, and a moved temporary was copied whole.
+        if (axial) cap0_.emplace(Coef{&prim_, &ray_, Part::cap0}, undecided_), cap1_.emplace(Coef{&prim_, &ray_, Part::cap1}, undecided_);
     }
 
     int side_spans(End (&enter)[2], End (&exit)[2]) const { return side_spans_of(side_, enter, exit); }
@@ -847,12 +868,12 @@ RAYQ_FLATTEN inline std::optional<Crossings<T>> quick_solid_crossings(const Ray<
             if (undecided) return std::nullopt;
             if (disc < 0) return Crossings<T>{};
             // The exit is rounded only when it can count (a double's costs a Newton step).
-            const T t0 = side.rounded(0);
+            const T t0 = side.rounded_alone(0);
             if (undecided || t0 == ray.tmin || t0 == ray.tmax) return std::nullopt;
             Crossings<T> out;
             if (ray.tmin < t0 && t0 < ray.tmax) out.add(t0, Part::surface, true, true);
             if (out.count == limit || !(t0 < ray.tmax)) return out;
-            const T t1 = side.rounded(1);
+            const T t1 = side.rounded_alone(1);
             if (undecided || t1 == ray.tmin || t1 == ray.tmax) return std::nullopt;
             if (ray.tmin < t1 && t1 < ray.tmax) out.add(t1, Part::surface, false, true);
             return out;
