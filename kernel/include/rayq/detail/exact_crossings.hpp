@@ -650,7 +650,7 @@ public:
                 rounded_ = true;
                 std::optional<float> t[2];
                 if (a_.sign == 0) {
-                    if (sign_b() != 0) t[0] = t[1] = rounded_between_midpoints<float>(quotient(-bounded(r_.f), bounded(r_.df)));
+                    if (sign_b() != 0) t[0] = t[1] = rounded_between_midpoints<float>(line_root());
                 } else if (const auto roots = root_intervals(bounded(r_.a), bounded(r_.df), bounded(r_.f), disc_)) {
                     t[0] = rounded_between_midpoints<float>((*roots)[0]), t[1] = rounded_between_midpoints<float>((*roots)[1]);
                 }
@@ -673,7 +673,7 @@ public:
         if constexpr (std::is_same_v<T, float>) {
             std::optional<float> t;
             if (a_.sign == 0) {
-                if (sign_b() != 0) t = rounded_between_midpoints<float>(quotient(-bounded(r_.f), bounded(r_.df)));
+                if (sign_b() != 0) t = rounded_between_midpoints<float>(line_root());
             } else if (two_certain_roots(bounded(r_.a), disc_)) {
                 const auto root = root_interval(bounded(r_.a), bounded(r_.df), bounded(r_.f), cancellation_free_q(bounded(r_.df), disc_), which);
                 if (root) t = rounded_between_midpoints<float>(*root);
@@ -694,7 +694,7 @@ public:
             intervals_ = true;
             if (a_.known && a_.sign == 0) {
                 const Sign b = sign_of(r_.df);
-                if (b.known && b.sign != 0) iv_[0] = iv_[1] = quotient(-bounded(r_.f), bounded(r_.df)), has_iv_ = true;
+                if (b.known && b.sign != 0) iv_[0] = iv_[1] = line_root(), has_iv_ = true;
             } else if (a_.known && sign_disc_.known && sign_disc_.sign > 0) {
                 if (const auto roots = root_intervals(bounded(r_.a), bounded(r_.df), bounded(r_.f), disc_))
                     iv_[0] = (*roots)[0], iv_[1] = (*roots)[1], has_iv_ = true;
@@ -705,6 +705,8 @@ public:
     }
 
 private:
+    // A line's only root, -c/b, as a certified interval (a vanishes, b's sign is certain).
+    Bounded<double> line_root() const { return quotient(-bounded(r_.f), bounded(r_.df)); }
     std::optional<T> newton_from_estimate(int which) const
     {
         if (a_.sign == 0) return sign_b() != 0 ? newton(0, -value_of(r_.f) / value_of(r_.df)) : std::nullopt;
