@@ -48,11 +48,19 @@ inline Vec3<T> point_at(Policy, const Vec3<T>& origin, const Vec3<T>& direction,
     else return origin + t * direction;
 }
 
-// Unit vector along v, scaled by its largest component first so that neither tiny nor huge
-// vectors under- or overflow in the squared length. Returns {0,0,0} for a zero or non-finite v.
+// Unit vector along v. Returns {0,0,0} for a zero or non-finite v.
+// Where |v|² is finite and far above the subnormals (squares too small to count may underflow:
+// they lose less than an ulp of |v|²), v times 1/|v|: one division instead of six, and each
+// component rounded once after the common factor, which does not turn the vector (float sphere hits
+// with the full record, SSE2, fast / accurate: 989 -> 957 / 847 -> 819 instructions, callgrind;
+// 79 -> 69 / 97 -> 91 ns, min of 31 runs). Otherwise v is first scaled by its largest component,
+// so that neither tiny nor huge vectors under- or overflow in the squared length.
 template <class T>
 inline Vec3<T> unit(const Vec3<T>& v)
 {
+    const T dd = rayq::dot(v, v);
+    constexpr T smallest_unscaled = std::numeric_limits<T>::min() / (std::numeric_limits<T>::epsilon() * std::numeric_limits<T>::epsilon());
+    if (dd >= smallest_unscaled && dd <= std::numeric_limits<T>::max()) return v * (T(1) / std::sqrt(dd));
     // Every component checked: std::max skips a NaN that is not first (NaN < x is false).
     if (!(std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z))) return {T(0), T(0), T(0)};
     const T m = std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
