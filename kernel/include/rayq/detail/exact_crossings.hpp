@@ -358,10 +358,8 @@ RAYQ_INLINE bool all_within_static_range(const X&... x)
 // capped cylinder 32% / 36%, cone 33% / 37%, disk 20% / 17%, triangle 8% / 8%.
 // A guess t outside the range, or a residual beyond the degrees the range covers, takes the
 // running bounds (newton_rounded). Double only: a float root needs no Newton step in the quick lanes.
-// Forced inline as well: called from a lambda (a double sphere's lane), GCC left it out of line
-// despite the caller's flatten (1,255 against 1,199 instructions per hit, callgrind).
 template <class T, class Coef>
-RAYQ_FLATTEN RAYQ_INLINE std::optional<T> quick_newton_rounded(const Coef& coef, int sign_a, int which, T t)
+RAYQ_FLATTEN inline std::optional<T> quick_newton_rounded(const Coef& coef, int sign_a, int which, T t)
 {
     static_assert(std::is_same_v<T, double>, "the quick lanes round float roots from their intervals");
     if (within_static_range(t)) {
@@ -782,8 +780,12 @@ private:
 // correctly rounded or none; none when a root is needed and not given, or equals a window end (a
 // float ≠ x on one side of x puts the exact root on that side, past its midpoint). The exit is
 // rounded only when it can count (a double's costs a Newton step).
+// Not forced inline: twice here GCC 12 left calls inside a forced-inline callee of a flattened
+// function out of line. Forced, it left quick_newton_rounded out of line in a double sphere's lane
+// (1,255 against 1,179 instructions per hit, callgrind), and forcing that inline in turn left a
+// double plane's residual and Newton step out of line in rayq-bench (accurate 264 -> 347 us).
 template <class T, class Root>
-RAYQ_INLINE std::optional<Crossings<T>> two_root_crossings(const Ray<T>& ray, int limit, Root root)
+inline std::optional<Crossings<T>> two_root_crossings(const Ray<T>& ray, int limit, Root root)
 {
     const std::optional<T> t0 = root(0);
     if (!t0 || *t0 == ray.tmin || *t0 == ray.tmax) return std::nullopt;
@@ -890,13 +892,13 @@ RAYQ_FLATTEN inline std::optional<Crossings<T>> quick_solid_crossings(const Ray<
         // certifies a root also proves the roots real (x <= 1/2 in newton_step makes
         // F'² − 4aF, the discriminant, positive) and that it is root `which` (F''s sign). a = |d|²
         // is a sum of squares of inputs within the static range: positive exactly when its
-        // computed value is. Callgrind, SSE2, accurate double sphere hits: 1,477 -> 1,199
+        // computed value is. Callgrind, SSE2, accurate double sphere hits: 1,477 -> 1,179
         // instructions; ns per ray over hits and misses (min of 31 runs) 69 -> 63, fast's 44.
         const PartCoefficients<Prim> coef{&prim, &ray, Part::surface};
         const Residual<T> r = coef.at(T(0));
         const T d = r.df * r.df - T(4) * r.a * r.f;
         if (r.a > T(0) && d > T(0))
-            if (const auto out = two_root_crossings(ray, limit, [&](int which) RAYQ_INLINE_LAMBDA {
+            if (const auto out = two_root_crossings(ray, limit, [&](int which) {
                     return quick_newton_rounded<T>(coef, 1, which, root_estimate(r.a, r.df, r.f, d, 1, which));
                 }))
                 return out;
@@ -915,7 +917,7 @@ RAYQ_FLATTEN inline std::optional<Crossings<T>> quick_solid_crossings(const Ray<
             const int disc = side.sign_disc();
             if (undecided) return std::nullopt;
             if (disc < 0) return Crossings<T>{};
-            const auto out = two_root_crossings(ray, limit, [&](int which) RAYQ_INLINE_LAMBDA -> std::optional<T> {
+            const auto out = two_root_crossings(ray, limit, [&](int which) -> std::optional<T> {
                 const T t = side.rounded_alone(which);
                 if (undecided) return std::nullopt;
                 return t;
