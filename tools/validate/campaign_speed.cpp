@@ -171,8 +171,13 @@ json run(const Settings& s, const Item& item, std::string& csv)
     const std::filesystem::path out = temporary_path("bench.json");
     char min_time[64];
     std::snprintf(min_time, sizeof min_time, "--benchmark_min_time=%g", s.bench_min_time);
-    std::vector<std::string> args = {binary, min_time, "--benchmark_repetitions=5", "--benchmark_report_aggregates_only=true",
-                                     "--benchmark_format=json", "--benchmark_out_format=json", "--benchmark_out=" + out.string()};
+    // Repetitions in random order across the program's benchmarks: on a shared machine whose speed
+    // drifts for minutes at a time, five repetitions of `fast` followed by five of `accurate` put
+    // the drift into their ratio (the same binary's float capped cylinder: 0.98, 1.02 and 1.35 in
+    // three runs); interleaved, both medians sample the same stretch of time (0.99, 1.05, 1.02).
+    std::vector<std::string> args = {binary, min_time, "--benchmark_repetitions=5", "--benchmark_enable_random_interleaving=true",
+                                     "--benchmark_report_aggregates_only=true", "--benchmark_format=json", "--benchmark_out_format=json",
+                                     "--benchmark_out=" + out.string()};
     if (const std::string filter = item.spec.value("filter", ""); !filter.empty()) args.push_back("--benchmark_filter=" + filter);
     std::vector<oracle::Fixture> cases;
     const std::filesystem::path answers_in = temporary_path("answers.in"), answers_out = temporary_path("answers.out");
