@@ -798,6 +798,99 @@ inline std::optional<Crossings<T>> two_root_crossings(const Ray<T>& ray, int lim
     return out;
 }
 
+// The sign of a residual F at every t in the cell of floats that round to `t` (where a certified
+// Newton step puts an exact root), from its value at t in the static filter, or 0 when that cannot
+// decide it: F(t) must clear its bound plus what F can move within the cell, |F'(t)|·h + |a|·h²
+// (Taylor, exact for a quadratic), h = one ulp above |t|, at least the distance to either edge of
+// the cell. The inputs and t must be within the static range (magnitude.hpp).
+template <class T>
+RAYQ_INLINE int sign_over_cell(const Residual<Magnitude<T>>& r, T t)
+{
+    const T h = next_up(std::abs(t)) - std::abs(t);
+    // h·(|F'| + |a|·h), without a's term for a plane (a = 0): a bound floored by grow() and then
+    // multiplied by h would be subnormal, which costs x86 a microcode assist (bounded.hpp).
+    const T slope = grow(std::abs(r.df.v()) + r.df.bound());
+    const T drift = r.a.m() == T(0) ? slope : grow(slope + grow(grow(std::abs(r.a.v()) + r.a.bound()) * h));
+    const T reach = grow(r.f.bound() + grow(drift * h));
+    return r.f.v() > reach ? 1 : (-r.f.v() > reach ? -1 : 0);
+}
+
+// An axial primitive: its axis runs from p0 to p1 (a sphere's lane, compiled with `axial` false
+// only, is never asked for one).
+template <class Prim, class = void>
+struct has_axis_ends : std::false_type {};
+template <class Prim>
+struct has_axis_ends<Prim, std::void_t<decltype(std::declval<const Prim&>().p1 - std::declval<const Prim&>().p0)>> : std::true_type {};
+
+// A double axial primitive's closest crossing, without the quick lane's filter, where the ray
+// enters through its side (about four hits in five on random rays aimed at a capped cylinder or
+// frustum) or through a cap. Plain estimates pick the case to certify (a wrong pick costs time,
+// never the answer):
+//   The side: its smaller root τ0 from plain coefficients and one certified Newton step (as a
+//   double sphere's lane), then the cap planes' signs over τ0's cell. With a > 0 (a certain
+//   sign) the side's inside is the span (τ0, τ1), so every crossing of the solid, capped or open,
+//   is at or after τ0 (solid_crossings). τ0 strictly between the planes: τ0, entering; τ0 past
+//   the slab's exit plane: none; before its entry plane: the cap's case.
+//   A cap (capped): the slab's entry plane t_c by its own Newton step; where the side is
+//   certainly negative over t_c's cell, the solid (side ∩ slab) starts at t_c, through that cap,
+//   and no crossing comes before it.
+// None where any of this is not certain, where the first crossing is at or behind the window's
+// start, or for more than one crossing: the quick lane then decides. Inputs within the static range.
+template <class Prim, class T = scalar_t<Prim>>
+inline std::optional<Crossings<T>> axial_first_crossing(const Ray<T>& ray, const Prim& prim, bool capped, CapEnds ends, int limit)
+{
+    if (limit != 1) return std::nullopt;
+    const auto first = [&](T t, Part part) {
+        Crossings<T> out;
+        out.add(t, part, true, true);
+        return out;
+    };
+    const PartCoefficients<Prim> side{&prim, &ray, Part::surface}, cap0{&prim, &ray, Part::cap0};
+    const Residual<T> r = side.at(T(0));
+    const T d = r.df * r.df - T(4) * r.a * r.f;
+    bool through_side = r.a > T(0) && d > T(0);
+    T estimate = T(0);
+    if (through_side) {
+        estimate = root_estimate(r.a, r.df, r.f, d, 1, 0);
+        const Vec3<T> axis = prim.p1 - prim.p0;
+        const T height = cap0.at(estimate).f;  // (p − p0)·A: the slab is 0 < height < |A|²
+        through_side = height > T(0) && height < dot(axis, axis);
+    }
+    if (through_side) {
+        if (certain_sign(side(Magnitude<T>{T(0), T(0), 0, 0, 0}).a) <= 0) return std::nullopt;
+        const std::optional<T> t0 = quick_newton_rounded<T>(side, 1, 0, estimate);
+        if (!t0 || *t0 == ray.tmin || *t0 == ray.tmax) return std::nullopt;
+        if (*t0 > ray.tmax) return Crossings<T>{};
+        if (!(ray.tmin < *t0) || !within_static_range(*t0)) return std::nullopt;
+        // Inside the slab: G0 = (p − p0)·A > 0 and G1 = (p − p1)·A < 0 (slab_of), A = p1 − p0. G1 is
+        // G0 − |A|² exactly: one evaluation serves both planes.
+        Residual<Magnitude<T>> g = cap0.at(Magnitude<T>{*t0});
+        const int below = -sign_over_cell(g, *t0);
+        const Vec3<Magnitude<T>> axis = lift<Magnitude<T>>(prim.p1) - lift<Magnitude<T>>(prim.p0);
+        g.f = g.f - dot(axis, axis);
+        const int above = sign_over_cell(g, *t0);
+        if (below < 0 && above < 0) return first(*t0, Part::surface);
+        if (below <= 0 && above <= 0) return std::nullopt;  // undecided
+        const int rising = certain_sign(g.df);                // d·A: whether cap0's plane is the entry
+        if (rising == 0) return std::nullopt;
+        if ((below > 0) != (rising > 0)) return Crossings<T>{};  // τ0 past the slab
+    }
+    if (!capped) return std::nullopt;
+    const int rising = certain_sign(cap0(Magnitude<T>{T(0), T(0), 0, 0, 0}).df);
+    if (rising == 0) return std::nullopt;
+    const Part entry = rising > 0 ? Part::cap0 : Part::cap1;
+    if (!ends.closes(entry)) return std::nullopt;
+    const PartCoefficients<Prim> plane{&prim, &ray, entry};
+    const Residual<T> e = plane.at(T(0));
+    const T plane_estimate = -e.f / e.df;
+    if (!(side.at(plane_estimate).f < T(0))) return std::nullopt;  // the estimate misses the cap
+    const std::optional<T> tc = quick_newton_rounded<T>(plane, 0, 0, plane_estimate);
+    if (!tc || *tc == ray.tmin || *tc == ray.tmax) return std::nullopt;
+    if (*tc > ray.tmax) return Crossings<T>{};  // the solid lies within the slab
+    if (!(ray.tmin < *tc) || !within_static_range(*tc) || sign_over_cell(side.at(Magnitude<T>{*tc}), *tc) >= 0) return std::nullopt;
+    return first(*tc, entry);
+}
+
 // ExactSolid's interface for the quick lane, on QuickQuadratic parts. Its ends are compared
 // through their correctly rounded floats: two different floats order their exact ends (each lies
 // strictly between its float's midpoints); equal ones leave the comparison undecided.
@@ -902,6 +995,9 @@ RAYQ_FLATTEN inline std::optional<Crossings<T>> quick_solid_crossings(const Ray<
                     return quick_newton_rounded<T>(coef, 1, which, root_estimate(r.a, r.df, r.f, d, 1, which));
                 }))
                 return out;
+    }
+    if constexpr (axial && has_axis_ends<Prim>::value && !std::is_same_v<T, float> && is_magnitude<F>::value) {
+        if (const auto out = axial_first_crossing(ray, prim, capped, ends, limit)) return out;
     }
     bool undecided = false;
     const QuickSolid<Prim, F> solid(ray, prim, axial, undecided);
