@@ -822,73 +822,101 @@ struct has_axis_ends : std::false_type {};
 template <class Prim>
 struct has_axis_ends<Prim, std::void_t<decltype(std::declval<const Prim&>().p1 - std::declval<const Prim&>().p0)>> : std::true_type {};
 
+// Where the floats that round to t lie against an axial primitive's slab: the signs of
+// G0 = (p − p0)·A (cap0's residual, positive inside) and G1 = (p − p1)·A (cap1's, negative
+// inside) over t's cell (slab_of), A = p1 − p0, and d·A, which orders the planes (each 0 when
+// uncertain). G1 is G0 − |A|² exactly: one evaluation serves both planes. Inputs and t within the
+// static range.
+struct SlabCell {
+    int g0, g1, rising;
+    bool inside() const { return g0 > 0 && g1 < 0; }
+    // Certainly past the exit plane (at or beyond it by the exact root's cell).
+    bool past() const { return rising != 0 && (rising > 0 ? g1 > 0 : g0 < 0); }
+};
+template <class Prim, class T = scalar_t<Prim>>
+RAYQ_INLINE SlabCell slab_cell(const Ray<T>& ray, const Prim& prim, T t)
+{
+    Residual<Magnitude<T>> g = PartCoefficients<Prim>{&prim, &ray, Part::cap0}.at(Magnitude<T>{t});
+    const int g0 = sign_over_cell(g, t);
+    const Vec3<Magnitude<T>> axis = lift<Magnitude<T>>(prim.p1) - lift<Magnitude<T>>(prim.p0);
+    g.f = g.f - dot(axis, axis);
+    return {g0, sign_over_cell(g, t), certain_sign(g.df)};
+}
+
 // A double axial primitive's closest crossing, without the quick lane's filter, where the ray
-// enters through its side (about four hits in five on random rays aimed at a capped cylinder or
-// frustum) or through a cap. Plain estimates pick the case to certify (a wrong pick costs time,
-// never the answer):
+// enters through its side (about four hits in five on random rays aimed at a cylinder or
+// frustum) or through an end of its slab. Plain estimates pick the case to certify (a wrong pick
+// costs time, never the answer):
 //   The side: its smaller root τ0 from plain coefficients and one certified Newton step (as a
 //   double sphere's lane), then the cap planes' signs over τ0's cell. With a > 0 (a certain
 //   sign) the side's inside is the span (τ0, τ1), so every crossing of the solid, capped or open,
 //   is at or after τ0 (solid_crossings). τ0 strictly between the planes: τ0, entering; τ0 past
-//   the slab's exit plane: none; before its entry plane: the cap's case.
-//   A cap (capped): the slab's entry plane t_c by its own Newton step; where the side is
-//   certainly negative over t_c's cell, the solid (side ∩ slab) starts at t_c, through that cap,
-//   and no crossing comes before it.
-// None where any of this is not certain, where the first crossing is at or behind the window's
-// start, or for more than one crossing: the quick lane then decides. Inputs within the static range.
+//   the slab's exit plane: none.
+//   An end: the slab's entry plane t_c by its own Newton step, where the side is certainly
+//   negative over t_c's cell. Capped, the solid (side ∩ slab) starts there, through that cap, and
+//   no crossing comes before it. Open, with a > 0, τ0 < t_c < τ1: τ0 is outside the slab, so the
+//   first crossing is τ1, leaving through the side, when τ1 lies within the slab (its own
+//   Newton step), and none when τ1 lies past it.
+// Every crossing lies within the slab, so none when its entry (t_c) or the first root is beyond
+// the window's end. None where any of this is not certain, where the first crossing is at or
+// behind the window's start, or for more than one crossing: the quick lane then decides.
+// Inputs within the static range.
 template <class Prim, class T = scalar_t<Prim>>
 inline std::optional<Crossings<T>> axial_first_crossing(const Ray<T>& ray, const Prim& prim, bool capped, CapEnds ends, int limit)
 {
     if (limit != 1) return std::nullopt;
-    const auto first = [&](T t, Part part) {
+    const PartCoefficients<Prim> side{&prim, &ray, Part::surface}, cap0{&prim, &ray, Part::cap0};
+    const Magnitude<T> zero{T(0), T(0), 0, 0, 0};
+    const auto first = [&](T t, Part part, bool entering) -> std::optional<Crossings<T>> {
+        if (t == ray.tmin || t == ray.tmax) return std::nullopt;
+        if (t > ray.tmax) return Crossings<T>{};
+        if (!(ray.tmin < t)) return std::nullopt;
         Crossings<T> out;
-        out.add(t, part, true, true);
+        out.add(t, part, entering, true);
         return out;
     };
-    const PartCoefficients<Prim> side{&prim, &ray, Part::surface}, cap0{&prim, &ray, Part::cap0};
+    // A root of the side, certified, with a > 0 certain.
     const Residual<T> r = side.at(T(0));
     const T d = r.df * r.df - T(4) * r.a * r.f;
-    bool through_side = r.a > T(0) && d > T(0);
-    T estimate = T(0);
-    if (through_side) {
-        estimate = root_estimate(r.a, r.df, r.f, d, 1, 0);
-        const Vec3<T> axis = prim.p1 - prim.p0;
+    const bool two_roots = r.a > T(0) && d > T(0);
+    const auto side_root = [&](int which, T estimate) -> std::optional<T> {
+        if (certain_sign(side(zero).a) <= 0) return std::nullopt;
+        const std::optional<T> t = quick_newton_rounded<T>(side, 1, which, estimate);
+        if (!t || !within_static_range(*t)) return std::nullopt;
+        return t;
+    };
+    const Vec3<T> axis = prim.p1 - prim.p0;
+    const T width = dot(axis, axis);
+    if (two_roots) {
+        const T estimate = root_estimate(r.a, r.df, r.f, d, 1, 0);
         const T height = cap0.at(estimate).f;  // (p − p0)·A: the slab is 0 < height < |A|²
-        through_side = height > T(0) && height < dot(axis, axis);
+        if (height > T(0) && height < width) {
+            const std::optional<T> t0 = side_root(0, estimate);
+            if (!t0) return std::nullopt;
+            const SlabCell cell = slab_cell(ray, prim, *t0);
+            if (cell.inside()) return first(*t0, Part::surface, true);
+            if (cell.past()) return Crossings<T>{};
+            return std::nullopt;
+        }
     }
-    if (through_side) {
-        if (certain_sign(side(Magnitude<T>{T(0), T(0), 0, 0, 0}).a) <= 0) return std::nullopt;
-        const std::optional<T> t0 = quick_newton_rounded<T>(side, 1, 0, estimate);
-        if (!t0 || *t0 == ray.tmin || *t0 == ray.tmax) return std::nullopt;
-        if (*t0 > ray.tmax) return Crossings<T>{};
-        if (!(ray.tmin < *t0) || !within_static_range(*t0)) return std::nullopt;
-        // Inside the slab: G0 = (p − p0)·A > 0 and G1 = (p − p1)·A < 0 (slab_of), A = p1 − p0. G1 is
-        // G0 − |A|² exactly: one evaluation serves both planes.
-        Residual<Magnitude<T>> g = cap0.at(Magnitude<T>{*t0});
-        const int below = -sign_over_cell(g, *t0);
-        const Vec3<Magnitude<T>> axis = lift<Magnitude<T>>(prim.p1) - lift<Magnitude<T>>(prim.p0);
-        g.f = g.f - dot(axis, axis);
-        const int above = sign_over_cell(g, *t0);
-        if (below < 0 && above < 0) return first(*t0, Part::surface);
-        if (below <= 0 && above <= 0) return std::nullopt;  // undecided
-        const int rising = certain_sign(g.df);                // d·A: whether cap0's plane is the entry
-        if (rising == 0) return std::nullopt;
-        if ((below > 0) != (rising > 0)) return Crossings<T>{};  // τ0 past the slab
-    }
-    if (!capped) return std::nullopt;
-    const int rising = certain_sign(cap0(Magnitude<T>{T(0), T(0), 0, 0, 0}).df);
-    if (rising == 0) return std::nullopt;
-    const Part entry = rising > 0 ? Part::cap0 : Part::cap1;
-    if (!ends.closes(entry)) return std::nullopt;
+    const Residual<T> rise = cap0.at(T(0));  // d·A
+    if (!(rise.df != T(0))) return std::nullopt;
+    const Part entry = rise.df > T(0) ? Part::cap0 : Part::cap1;
     const PartCoefficients<Prim> plane{&prim, &ray, entry};
-    const Residual<T> e = plane.at(T(0));
+    const Residual<T> e = entry == Part::cap0 ? rise : plane.at(T(0));
     const T plane_estimate = -e.f / e.df;
-    if (!(side.at(plane_estimate).f < T(0))) return std::nullopt;  // the estimate misses the cap
+    if (!(side.at(plane_estimate).f < T(0))) return std::nullopt;  // the estimate misses the end's disk
+    if (certain_sign(cap0(zero).df) != (rise.df > T(0) ? 1 : -1)) return std::nullopt;
     const std::optional<T> tc = quick_newton_rounded<T>(plane, 0, 0, plane_estimate);
-    if (!tc || *tc == ray.tmin || *tc == ray.tmax) return std::nullopt;
-    if (*tc > ray.tmax) return Crossings<T>{};  // the solid lies within the slab
-    if (!(ray.tmin < *tc) || !within_static_range(*tc) || sign_over_cell(side.at(Magnitude<T>{*tc}), *tc) >= 0) return std::nullopt;
-    return first(*tc, entry);
+    if (!tc || !within_static_range(*tc) || sign_over_cell(side.at(Magnitude<T>{*tc}), *tc) >= 0) return std::nullopt;
+    if (capped) return ends.closes(entry) ? first(*tc, entry, true) : std::nullopt;
+    if (!two_roots) return std::nullopt;
+    const std::optional<T> t1 = side_root(1, root_estimate(r.a, r.df, r.f, d, 1, 1));
+    if (!t1) return std::nullopt;
+    const SlabCell cell = slab_cell(ray, prim, *t1);
+    if (cell.inside()) return first(*t1, Part::surface, false);
+    if (cell.past()) return Crossings<T>{};
+    return std::nullopt;
 }
 
 // ExactSolid's interface for the quick lane, on QuickQuadratic parts. Its ends are compared
