@@ -55,42 +55,27 @@ namespace rayq::batch {
 
 using rayq::detail::norm1;  // |v|₁, the filters' bound on a point's coordinates
 
-// What both filters need of one ray, computed once per ray. The constructors are forced inline:
-// in a large translation unit (rayq-bench-embree) GCC called them out of line, and 16 capped
-// cylinders under `fast` ran at 16 M rays/s native against 26 M in a small program; 28.6 inlined.
+// What both filters need of one ray, computed once per ray, and their shared constants. The
+// constructors are forced inline: in a large translation unit (rayq-bench-embree) GCC called them
+// out of line, and 16 capped cylinders under `fast` ran at 16 M rays/s native against 26 M in a
+// small program; 28.6 inlined.
 template <class T>
 struct FilterRay {
-    Vec3<T> origin, unit_dir;
-    T len;            // |d|
-    T inv_len;        // 1/|d|: t is measured in units of d
-    T line_slack_abs; // absolute slack on ℓ² − r² for underflow (see below)
-    T t_slack_abs;
-    T o1;             // |o|₁
+    Vec3<T> origin;
+    T o1;  // |o|₁
 
-    RAYQ_INLINE explicit FilterRay(const Ray<T>& ray)
-    {
-        len = length(ray.direction);
-        inv_len = T(1) / len;
-        o1 = norm1(ray.origin);
-        extreme = !(len < huge && o1 < huge);
-        origin = ray.origin;
-        unit_dir = ray.direction * inv_len;
-        // Products that underflow err by at most denorm_min/2 absolutely; in the scalar
-        // policies such errors are divided by a = |d|² (≥ the smallest normal for a usable ray),
-        // so K·min/|d|² (plus K·min for the filter's own underflow) bounds them in units of ℓ².
-        // Factored so that no step is subnormal: min/|d|² was, for every ray with |d| > 1, and a
-        // subnormal result costs x86 a ~100-cycle assist (most of a small scene's time per ray).
-        constexpr T k_min = T(k_slack) * std::numeric_limits<T>::min();
-        line_slack_abs = k_min * (inv_len * inv_len + T(1));
-        // ≥ √line_slack_abs / |d| (√(a + b) ≤ √a + √b), without a second square root per ray.
-        t_slack_abs = sqrt_k_min * (inv_len + T(1)) * inv_len;
-    }
+    RAYQ_INLINE explicit FilterRay(const Ray<T>& ray) : origin(ray.origin), o1(norm1(ray.origin)) {}
+
     // Every policy's discriminant of a sphere errs by at most γ(n)·(b² + |a·c|) ≤ 2γ(n)·a·(|u|² + r²)
     // with n ≤ 10 (pbrt-v4 "Managing Rounding Error" §6.8.1 bounds; Ray Tracing Gems ch. 7 for the
     // forms): K = 256 unit roundoffs covers it with a wide margin, plus the filter's own ≤ 8ε·|u|².
     static constexpr int k_slack = 256;
     static constexpr T k_eps() { return T(k_slack) * std::numeric_limits<T>::epsilon(); }
-    static inline const T sqrt_k_min = std::sqrt(T(k_slack) * std::numeric_limits<T>::min()) * T(1.001);
+    // Products that underflow err by at most denorm_min/2 absolutely; in the scalar policies such
+    // errors are divided by a = |d|² (≥ the smallest normal for a usable ray), so K·min/|d|² (plus
+    // K·min for the filter's own underflow) bounds them in units of ℓ².
+    static constexpr T k_min = T(k_slack) * std::numeric_limits<T>::min();
+    static inline const T sqrt_k_min = std::sqrt(k_min) * T(1.001);
     // The rounding argument holds while the policies' products stay finite: at most
     // |d|²·(|u|² + r²) (fast's b² and a·c, stable's |d|²·(r² − ℓ²)), within a factor 4. Where they
     // overflow a policy may report a hit anywhere (stable's discriminant overflowed and put a hit
@@ -99,28 +84,63 @@ struct FilterRay {
     // with a longer |d| or |o|₁ keeps every lane, and a sphere with a larger |c|₁ or r is stored
     // with an infinite radius, which every comparison below keeps (no test per lane).
     static inline const T huge = std::ldexp(T(1), (std::numeric_limits<T>::max_exponent - 8) / 4);
-    bool extreme;     // |d| or |o|₁ at least `huge`: keep every lane
 };
 
-// The sphere filter's ray: also the line test's side of it (sphere_line), whose comparison is
-// divided by 1 − Kε and multiplied by |d|²: d/√(1 − Kε), |d|², the underflow slack times
-// |d|²/(1 − Kε) (k_min·(|d|² + 1): no subnormal step), and √(1 − Kε)/|d|², which turns u·line_dir
-// into the center's t. None of the line test's needs a square root or a division. (Kept out of
-// BoundFilterRay: bounded scenes measured 2–3% slower per ray with them.)
+// The window tests' side of a ray: |d|, 1/|d| (t is measured in units of d) and the underflow
+// slack on t, √(K·min)/|d| and more (√(a + b) ≤ √a + √b: no second square root). One square root
+// and one division, each factored so that no step is subnormal: min/|d|² was, for every ray with
+// |d| > 1, and a subnormal result costs x86 a ~100-cycle assist (most of a small scene's time per
+// ray).
+template <class T>
+struct RayScale {
+    T len, inv_len, t_slack_abs;
+
+    RAYQ_INLINE explicit RayScale(const Vec3<T>& direction)
+        : len(length(direction)), inv_len(T(1) / len), t_slack_abs(FilterRay<T>::sqrt_k_min * (inv_len + T(1)) * inv_len)
+    {
+    }
+};
+
+// The sphere filter's ray: the line test's side of it (sphere_line), whose comparison is divided
+// by 1 − Kε and multiplied by |d|²: d/√(1 − Kε), |d|², the underflow slack times |d|²/(1 − Kε)
+// (k_min·(|d|² + 1): no subnormal step). None of the line test's needs a square root or a
+// division, and the window test's (RayScale, and √(1 − Kε)/|d|², which turns u·line_dir into
+// the center's t) are computed at the first lane group whose line test keeps a lane: most rays of
+// a scene pass every group by the line test alone (16 float spheres, -march=native, ns per ray of
+// the line tests alone: 9.0 -> 6.5).
 template <class T>
 struct SphereFilterRay : FilterRay<T> {
     Vec3<T> line_dir;
-    T dd, line_slack, line_inv_len2;
+    T dd, line_slack;
+    bool extreme;  // |d| or |o|₁ at least `huge` (|d|² against huge²: the margin above is 4): keep every lane
 
-    RAYQ_INLINE explicit SphereFilterRay(const Ray<T>& ray) : FilterRay<T>(ray)
+    RAYQ_INLINE explicit SphereFilterRay(const Ray<T>& ray) : FilterRay<T>(ray), direction_(ray.direction)
     {
         line_dir = ray.direction * line_scale;
         dd = dot(ray.direction, ray.direction);
-        constexpr T k_min = T(FilterRay<T>::k_slack) * std::numeric_limits<T>::min();
-        line_slack = k_min * (dd + T(1)) * (line_scale * line_scale);
-        line_inv_len2 = this->inv_len * this->inv_len * line_root;
+        line_slack = FilterRay<T>::k_min * (dd + T(1)) * (line_scale * line_scale);
+        extreme = !(dd < this->huge * this->huge && this->o1 < this->huge);
     }
     static inline const T line_root = std::sqrt(T(1) - FilterRay<T>::k_eps()), line_scale = T(1) / line_root;
+
+    struct Window {
+        T inv_len, line_inv_len2, t_slack_abs;
+    };
+    // The window test's terms, computed once, when first asked for.
+    RAYQ_INLINE const Window& window() const
+    {
+        if (!scaled_) {
+            const RayScale<T> s(direction_);
+            window_ = {s.inv_len, s.inv_len * s.inv_len * line_root, s.t_slack_abs};
+            scaled_ = true;
+        }
+        return window_;
+    }
+
+private:
+    Vec3<T> direction_;
+    mutable Window window_{};
+    mutable bool scaled_ = false;
 };
 
 template <class T>
@@ -192,19 +212,25 @@ RAYQ_INLINE bool normal_within_exact_range(const Vec3<T>& normal)
     return detail::zero_or_within_exact_range(normal) || detail::zero_or_within_exact_range(detail::direction_near_unit(normal));
 }
 
-// What the filter needs of one ray: the sphere filter's per-ray values, plus Kε·|o|₁ (squared
-// and scaled) for the rounding of the hit point's absolute coordinates.
+// What the bounding-sphere filter needs of one ray: its line test works on the unit direction, so
+// the ray's scale (RayScale) is computed up front; plus Kε·|o|₁ (squared and scaled) for the
+// rounding of the hit point's absolute coordinates.
 template <class T>
-struct BoundFilterRay : FilterRay<T> {
+struct BoundFilterRay : FilterRay<T>, RayScale<T> {
+    Vec3<T> unit_dir;
     T abs_slack;  // 34·(Kε·|o|₁)² + the underflow slack on ℓ² (inf: keep every lane, and
                   // t_slack_abs is inf too)
 
-    RAYQ_INLINE explicit BoundFilterRay(const Ray<T>& ray) : FilterRay<T>(ray)
+    RAYQ_INLINE explicit BoundFilterRay(const Ray<T>& ray) : FilterRay<T>(ray), RayScale<T>(ray.direction)
     {
+        unit_dir = ray.direction * this->inv_len;
         const T ko1 = BoundSlack<T>::k_eps * this->o1;
         const bool extreme = !(this->o1 < BoundSlack<T>::huge) || BoundSlack<T>::outside(this->len) ||
                              !normal_within_exact_range(ray.direction);
-        abs_slack = extreme ? std::numeric_limits<T>::infinity() : T(34) * ko1 * ko1 + this->line_slack_abs;
+        // The underflow slack on ℓ² = |u|² − (u·d̂)²: K·min/|d|² + K·min (see FilterRay), factored
+        // so that no step is subnormal.
+        const T line_slack_abs = FilterRay<T>::k_min * (this->inv_len * this->inv_len + T(1));
+        abs_slack = extreme ? std::numeric_limits<T>::infinity() : T(34) * ko1 * ko1 + line_slack_abs;
         if (extreme) this->t_slack_abs = std::numeric_limits<T>::infinity();  // nor the window test
     }
 };

@@ -107,9 +107,10 @@ RAYQ_INLINE std::uint32_t sphere_candidates(const SphereFilterRay<T>& f, T tmin,
     if (detail::all_lanes(line_far)) return 0;  // the common case in a scene: no lane near the line
     // The crossings lie in tc ± r/|d|; a policy's t errs by at most √(Kε)·(|tc| + 2r/|d|) (the
     // square root of the discriminant's error near tangency: Ray Tracing Gems ch. 7).
-    const P tc = -ud * P(f.line_inv_len2);
-    const P rad = detail::abs_lanes(r) * P(f.inv_len);
-    const P margin = rad + P(sqrt_k_eps) * (detail::abs_lanes(tc) + rad + rad) + P(f.t_slack_abs);
+    const auto& w = f.window();
+    const P tc = -ud * P(w.line_inv_len2);
+    const P rad = detail::abs_lanes(r) * P(w.inv_len);
+    const P margin = rad + P(sqrt_k_eps) * (detail::abs_lanes(tc) + rad + rad) + P(w.t_slack_abs);
     const auto behind = tc + margin < P(tmin);
     const auto beyond = tc - margin > P(tmax);
     const auto drop = line_far || behind || beyond;
