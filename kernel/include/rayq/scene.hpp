@@ -80,10 +80,15 @@ struct SceneStore {
     // One or two primitives: their scalar queries cost less than the filter's set-up and one
     // lane group (callgrind, one float sphere under fast: 167 of the scene's 364 instructions
     // per ray were filter and bookkeeping, against 197 for the scalar query; accurate answers
-    // certain misses with batch::exactly_missed_sphere at about the filter's cost). That direct loop is
-    // inlined into the query and the filtered one is not: clang left the whole scan out of line,
-    // and a one-sphere scene's nearest() ran at 34 M rays/s against 68 M inlined, while inlining
-    // the filtered loop too cost 17% at 16 spheres (bench of 4,096 rays, -O3 -march=native).
+    // certain misses with batch::exactly_missed_sphere at about the filter's cost). Both loops are
+    // forced inline: clang left the whole scan out of line, and a one-sphere scene's nearest() ran
+    // at 34 M rays/s against 68 M inlined. The filtered loop was kept out of line while inlining it
+    // cost 17% at 16 spheres; since the line tests need no square root (SphereFilterRay), inlined
+    // it keeps the window, the nearest crossing and the ray's lanes in registers rather than behind
+    // the call's references (rayq-bench-embree, -march=native, µs per 4,096 rays with point and
+    // normal: 16 spheres 78 -> 55, 16 capped cylinders 111 -> 91, 1,000 spheres 917 -> 871; one
+    // sphere 26 -> 31), once the scene's intersect() is forced inline too (GCC had then called it
+    // out of line, the answer returned through memory: one sphere took 57).
     template <class Policy, class Visit>
     RAYQ_INLINE bool scan(const Ray<T>& ray, Visit visit) const
     {
@@ -99,7 +104,7 @@ struct SceneStore {
     static constexpr bool filtered = sphere || batch::bound_filter_exact_v<Policy, Prim>;
 
     template <class Policy, class Visit>
-    RAYQ_NOINLINE bool scan_filtered(const Ray<T>& ray, Visit& visit) const
+    RAYQ_INLINE bool scan_filtered(const Ray<T>& ray, Visit& visit) const
     {
         using Filter = std::conditional_t<sphere, batch::SphereFilterRay<T>, batch::BoundFilterRay<T>>;
         const Filter f(ray);
@@ -245,8 +250,8 @@ struct SceneHit {
 
 // Forced inline: GCC called it out of line from a one-primitive loop once the crossings inside
 // grew, and returned the answer through memory (standalone loop, SSE2, intersect() with point and
-// normal, ns per ray: one capped cylinder 20.1 -> 15.6, one sphere 6.9 -> 6.3). The search over
-// more than two primitives of a type stays out of line (SceneStore::scan).
+// normal, ns per ray: one capped cylinder 20.1 -> 15.6, one sphere 6.9 -> 6.3). So is the search
+// inside it (SceneStore::scan).
 template <class Policy, class... Prims, std::enable_if_t<is_policy_v<Policy>, int> = 0>
 RAYQ_INLINE std::optional<SceneRef<typename Scene<Prims...>::scalar_type>> nearest(
     Policy policy, const Ray<typename Scene<Prims...>::scalar_type>& ray, const Scene<Prims...>& scene)
@@ -290,8 +295,10 @@ inline SceneHit<typename Scene<Prims...>::scalar_type> complete(Policy policy,
     return {hit.value(), ref.type, ref.index};  // value(): a ref that is not this scene's nearest hit
 }
 
+// Forced inline, as nearest() is: with the filtered search inlined, GCC called it out of line and
+// returned the record through memory (rayq-bench-embree, one sphere, point and normal: 26 -> 57 µs).
 template <class Policy, class... Prims, std::enable_if_t<is_policy_v<Policy>, int> = 0>
-inline std::optional<SceneHit<typename Scene<Prims...>::scalar_type>> intersect(
+RAYQ_INLINE std::optional<SceneHit<typename Scene<Prims...>::scalar_type>> intersect(
     Policy policy, const Ray<typename Scene<Prims...>::scalar_type>& ray, const Scene<Prims...>& scene,
     HitFields fields = HitFields::all)
 {
