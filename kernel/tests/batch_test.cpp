@@ -29,6 +29,12 @@ std::uint32_t scene_candidates(const batch::BoundFilterRay<T>& f, const Ray<T>& 
 {
     return batch::bound_candidates<Policy, batch::bound_test_v<Policy, Prim>>(f, ray.tmin, ray.tmax, soa, g);
 }
+// The scene's skip of a whole lane group by the line test alone (SceneStore::scan_filtered).
+template <class Policy, class Prim, class T>
+bool scene_skips_group(const Ray<T>& ray, const batch::BoundSoA<T>& soa, std::size_t g)
+{
+    return batch::line_passes_group<batch::bound_test_v<Policy, Prim>>(batch::BoundFilterRay<T>(ray), soa, g);
+}
 template <class Policy, class Prim, class T>
 std::uint32_t stream_candidates(const batch::RayStream<T>& stream, std::size_t g, const batch::BoundingSphere<T>& b)
 {
@@ -218,7 +224,7 @@ TYPED_TEST(BatchTest, FilterNeverDropsAHit)
             using Policy = std::decay_t<decltype(TypeParam::policy)>;
             if constexpr (!batch::bound_filter_exact_v<Policy, Prim>) return;
             SCOPED_TRACE(typeid(Prim).name());
-            std::size_t kept = 0, lanes = 0, hits = 0;
+            std::size_t kept = 0, lanes = 0, hits = 0, skipped_groups = 0;
             for (int scene = 0; scene < 24; ++scene) {
                 // Far from the origin at times: the hit point's rounding grows with |o| and |c|.
                 const V offset = scene % 3 == 0 ? g.unit() * g.log_uniform(1e2, 1e5) : V{0, 0, 0};
@@ -243,6 +249,8 @@ TYPED_TEST(BatchTest, FilterNeverDropsAHit)
                     const batch::BoundFilterRay<T> f(ray);
                     for (std::size_t grp = 0; grp < soa.groups(); ++grp) {
                         const std::uint32_t m = scene_candidates<Policy, Prim>(f, ray, soa, grp);
+                        const bool skipped = scene_skips_group<Policy, Prim>(ray, soa, grp);
+                        skipped_groups += skipped;
                         kept += std::bitset<32>(m).count();
                         for (int lane = 0; lane < batch::BoundSoA<T>::width; ++lane) {
                             const std::size_t i = grp * batch::BoundSoA<T>::width + std::size_t(lane);
@@ -252,6 +260,7 @@ TYPED_TEST(BatchTest, FilterNeverDropsAHit)
                             hits += hit;
                             if (hit) {
                                 EXPECT_TRUE(m >> lane & 1u) << "dropped primitive " << i << " that the policy hits";
+                                EXPECT_FALSE(skipped) << "the line test skipped the group of primitive " << i << ", which the policy hits";
                             }
                         }
                     }
@@ -259,6 +268,10 @@ TYPED_TEST(BatchTest, FilterNeverDropsAHit)
             }
             EXPECT_GT(hits, 0u);
             EXPECT_LT(kept, lanes / 2) << "kept " << kept << " of " << lanes << " lanes (" << hits << " hits)";
+            // Skipping is exercised only where a group can be passed whole (narrow SIMD lanes).
+            if (batch::bound_test_v<Policy, Prim> != batch::BoundTest::line && batch::BoundSoA<T>::width <= 4) {
+                EXPECT_GT(skipped_groups, 0u);
+            }
         },
         static_cast<Bounded<T>*>(nullptr));
 }
@@ -361,6 +374,7 @@ TYPED_TEST(BatchTest, FilterKeepsCylinderHitsAlongTheAxis)
             worst = std::max(worst, double((dist2 - rr) / slack));
             const batch::BoundFilterRay<T> f(ray);
             EXPECT_TRUE((scene_candidates<Policy, Cylinder<T>>(f, ray, soa, 0) & 1u)) << "scene filter dropped a hit";
+            EXPECT_FALSE((scene_skips_group<Policy, Cylinder<T>>(ray, soa, 0))) << "scene's line test skipped a hit";
             batch::RayStream<T> stream;
             stream.push_back(ray);
             EXPECT_TRUE((stream_candidates<Policy, Cylinder<T>>(stream, 0, b) & 1u)) << "stream filter dropped a hit";
