@@ -563,13 +563,14 @@ TEST(MagnitudeFilter, AxialQuickLaneAgreesWithTheExactPath) { expect_axial_lane_
 TEST(MagnitudeFilter, DoubleAxialQuickLaneAgreesWithTheExactPath) { expect_axial_lane_agrees<double>(); }
 
 // A double axial primitive's first crossing straight from plain estimates and Newton steps
-// (axial_first_crossing), where it is hardest to certify: rays through points 2^-52 to 2^-8 (of
-// the size) off a rim, where the side meets a cap plane, so that the side's root and the cap's
-// lie ulps apart, and rays whose lines pass that close to tangency with the side. Where the lane
-// answers, it answers what the exact path does: hit or miss, the crossing bit for bit, its part
-// and direction. Each of its answers is exercised (about 60% of these rays answered at writing):
-// entering through the side or a cap, leaving an open one through its side after entering
-// through an open end, and none (some windows end short of the surface).
+// (axial_first_crossing), where it is hardest to certify: rays through points off a rim (2^-52
+// to 2^-8 of the size radially, 2^-67 to 2^-8 or 0 along the axis), where the side meets a cap
+// plane, so that the side's root and the cap's lie ulps apart, and rays whose lines pass that
+// close to tangency with the side; cylinders, frustums and cones with an apex (an end no cap
+// closes). Where the lane answers, it answers what the exact path does: hit or miss, the crossing
+// bit for bit, its part and direction. Each of its answers is exercised (about 60% of these rays
+// answered at writing): entering through the side or a cap, leaving an open one through its side
+// after entering through an open end, and none (some windows end short of the surface).
 TEST(MagnitudeFilter, DoubleAxialLaneAgreesNearRimsAndTangency)
 {
     std::mt19937_64 rng(0xA7E5);
@@ -617,6 +618,7 @@ TEST(MagnitudeFilter, DoubleAxialLaneAgreesNearRimsAndTangency)
         };
         check(Cylinder<double>{p0, p1, r0, capped}, detail::CapEnds{true, true});
         check(Cone<double>{p0, r0, p1, r1, capped}, detail::CapEnds{true, true});
+        check(Cone<double>{p0, r0, p1, 0.0, capped}, detail::CapEnds{true, false});
     }
     EXPECT_GT(answered, rays / 3);
     EXPECT_GT(sides, rays / 20);

@@ -885,12 +885,11 @@ inline std::optional<Crossings<T>> axial_first_crossing(const Ray<T>& ray, const
         if (!t || !within_static_range(*t)) return std::nullopt;
         return t;
     };
-    const Vec3<T> axis = prim.p1 - prim.p0;
-    const T width = dot(axis, axis);
     if (two_roots) {
         const T estimate = root_estimate(r.a, r.df, r.f, d, 1, 0);
         const T height = cap0.at(estimate).f;  // (p − p0)·A: the slab is 0 < height < |A|²
-        if (height > T(0) && height < width) {
+        const Vec3<T> axis = prim.p1 - prim.p0;
+        if (height > T(0) && height < dot(axis, axis)) {
             const std::optional<T> t0 = side_root(0, estimate);
             if (!t0) return std::nullopt;
             const SlabCell cell = slab_cell(ray, prim, *t0);
@@ -902,6 +901,9 @@ inline std::optional<Crossings<T>> axial_first_crossing(const Ray<T>& ray, const
     const Residual<T> rise = cap0.at(T(0));  // d·A
     if (!(rise.df != T(0))) return std::nullopt;
     const Part entry = rise.df > T(0) ? Part::cap0 : Part::cap1;
+    // An end no cap closes (a cone's apex) is a point: the side is never certainly negative over
+    // its plane's cell below, so this only saves the plane's Newton step.
+    if (capped && !ends.closes(entry)) return std::nullopt;
     const PartCoefficients<Prim> plane{&prim, &ray, entry};
     const Residual<T> e = entry == Part::cap0 ? rise : plane.at(T(0));
     const T plane_estimate = -e.f / e.df;
@@ -909,7 +911,7 @@ inline std::optional<Crossings<T>> axial_first_crossing(const Ray<T>& ray, const
     if (certain_sign(cap0(zero).df) != (rise.df > T(0) ? 1 : -1)) return std::nullopt;
     const std::optional<T> tc = quick_newton_rounded<T>(plane, 0, 0, plane_estimate);
     if (!tc || !within_static_range(*tc) || sign_over_cell(side.at(Magnitude<T>{*tc}), *tc) >= 0) return std::nullopt;
-    if (capped) return ends.closes(entry) ? first(*tc, entry, true) : std::nullopt;
+    if (capped) return first(*tc, entry, true);
     if (!two_roots) return std::nullopt;
     const std::optional<T> t1 = side_root(1, root_estimate(r.a, r.df, r.f, d, 1, 1));
     if (!t1) return std::nullopt;
