@@ -307,6 +307,48 @@ TEST(MagnitudeFilter, DoubleSphereLaneAgreesNearTangency)
     EXPECT_GT(answered, rays / 2);
 }
 
+// The sphere's own F for the quick lanes' Newton steps (quick_residual_f) holds its bound: the
+// exact F (expansions) lies within e of v, at roots (where F cancels to nothing), a few ulps off
+// them, and far from them, over spheres and rays across the static range's scales; and the bound
+// is u²-sized (within 2^-98 of F's magnitude, plus the rounding of v itself).
+TEST(MagnitudeFilter, SphereResidualForNewtonStepsHoldsItsBound)
+{
+    std::mt19937_64 rng(0x5F0F);
+    std::uniform_real_distribution<double> u(-1, 1);
+    int checked = 0, near_roots = 0;
+    for (int i = 0; i < 20000; ++i) {
+        const int scale = int(40 * u(rng));
+        const double radius = std::ldexp(0.5 + std::abs(u(rng)), scale);
+        const Sphere<double> s{Vec3<double>{u(rng), u(rng), u(rng)} * std::ldexp(1.0, scale), radius};
+        const Vec3<double> d = normalize(Vec3<double>{u(rng), u(rng), u(rng)}) * std::ldexp(1.0, int(8 * u(rng)));
+        const Ray<double> r{s.center + Vec3<double>{u(rng), u(rng), u(rng)} * (0.6 * radius) - (4 * radius / length(d)) * d, d};
+        // t: a root when there is one, moved by up to a few ulps, or anywhere along the ray.
+        const auto roots = detail::exact_curved_crossings_in_unit(r, s, false, false, {false, false}, 2, detail::reach_of(r, s));
+        double t = std::ldexp(std::abs(u(rng)), int(10 * u(rng))) * radius / length(d);
+        if (roots.count > 0 && i % 4 != 0) {
+            t = roots.item[rng() % roots.count].t;
+            for (int k = int(rng() % 5); k > 0; --k) t = rng() & 1 ? std::nextafter(t, 1e300) : std::nextafter(t, -1e300);
+            ++near_roots;
+        }
+        if (!detail::all_within_static_range(r.origin, r.direction, s.center, s.radius, t)) continue;
+        const detail::Estimate<double> f = quick_residual_f(s, r, t, Part::surface);
+        using E = Expansion<double>;
+        const E exact = residual(s, detail::lift<E>(r.origin), detail::lift<E>(r.direction), E{t}, Part::surface).f;
+        ASSERT_TRUE(exact.exact());
+        EXPECT_GE((exact - E{f.v} + E{f.e}).sign(), 0) << i;
+        EXPECT_LE((exact - E{f.v} - E{f.e}).sign(), 0) << i;
+        double m = radius * radius;  // F's magnitude: Σ(|o − c| + |t·d|)² + r², per component
+        for (int a = 0; a < 3; ++a) {
+            const double size = std::abs((&r.origin.x)[a] - (&s.center.x)[a]) + std::abs(t * (&r.direction.x)[a]);
+            m += size * size;
+        }
+        EXPECT_LT(f.e, 0x1p-98 * m + 0x1p-52 * std::abs(f.v)) << i;  // u²-sized, plus v's own rounding
+        ++checked;
+    }
+    EXPECT_GT(checked, 15000);
+    EXPECT_GT(near_roots, 5000);
+}
+
 // Non-finite inputs, and coefficients beyond 2^±400, leave the quick lane to the rescaled exact
 // path; large spheres whose coefficients stay within it do not.
 TEST(MagnitudeFilter, QuickLaneDeclinesOutOfRange)

@@ -358,18 +358,33 @@ RAYQ_INLINE bool all_within_static_range(const X&... x)
 // capped cylinder 32% / 36%, cone 33% / 37%, disk 20% / 17%, triangle 8% / 8%.
 // A guess t outside the range, or a residual beyond the degrees the range covers, takes the
 // running bounds (newton_rounded). Double only: a float root needs no Newton step in the quick lanes.
+// A part whose primitive evaluates F itself for the quick lanes' Newton steps: the primitive's
+// `quick_residual_f(prim, ray, t, part)`, found by argument-dependent lookup (the sphere's,
+// sphere.hpp, with a shorter chain after t than the residual in StaticDoubleWord).
+template <class Coef, class = void>
+struct has_quick_residual_f : std::false_type {};
+template <class Coef>
+struct has_quick_residual_f<Coef, std::void_t<decltype(quick_residual_f(*std::declval<const Coef&>().prim, *std::declval<const Coef&>().ray,
+                                                                        std::declval<const Coef&>().ray->tmin, Part::surface))>>
+    : std::true_type {};
+
 template <class T, class Coef>
 RAYQ_FLATTEN inline std::optional<T> quick_newton_rounded(const Coef& coef, int sign_a, int which, T t)
 {
     static_assert(std::is_same_v<T, double>, "the quick lanes round float roots from their intervals");
     if (within_static_range(t)) {
-        const StaticDoubleWord<T> f = coef.at(StaticDoubleWord<T>{t}).f;
         const Residual<Magnitude<T>> slopes = coef.at(Magnitude<T>{t});
-        // Degrees: StaticDoubleWord's grid argument; products of at most 15 magnitudes in 2^±64
-        // stay normal (magnitude.hpp).
-        if (f.d <= 8 && slopes.df.d <= 15 && slopes.a.d <= 15)
-            return newton_step(estimate(f), Estimate<T>{slopes.df.v(), slopes.df.bound()}, Estimate<T>{slopes.a.v(), slopes.a.bound()}, sign_a,
-                               which, t);
+        const auto step = [&](const Estimate<T>& f) {
+            return newton_step(f, Estimate<T>{slopes.df.v(), slopes.df.bound()}, Estimate<T>{slopes.a.v(), slopes.a.bound()}, sign_a, which, t);
+        };
+        if constexpr (has_quick_residual_f<Coef>::value) {
+            if (slopes.df.d <= 15 && slopes.a.d <= 15) return step(quick_residual_f(*coef.prim, *coef.ray, t, coef.part));
+        } else {
+            const StaticDoubleWord<T> f = coef.at(StaticDoubleWord<T>{t}).f;
+            // Degrees: StaticDoubleWord's grid argument; products of at most 15 magnitudes in 2^±64
+            // stay normal (magnitude.hpp).
+            if (f.d <= 8 && slopes.df.d <= 15 && slopes.a.d <= 15) return step(estimate(f));
+        }
     }
     return newton_rounded<T>(coef, sign_a, which, t);
 }
