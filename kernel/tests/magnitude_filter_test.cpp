@@ -177,7 +177,8 @@ TEST(MagnitudeFilter, BoundHoldsOnSphereCoefficientsAndDiscriminant)
 // The quick lanes' Newton step evaluates F in StaticDoubleWord (quick_newton_rounded): its static
 // bound holds against exact expansions on every primitive's residual, at the edges of the range it
 // is promised (inputs and t of 0 or within 2^±64, down to 2^-64 with full significands: the grid
-// argument), at ordinary scales, and near a root (t from the exact path), where F cancels; and
+// argument), at ordinary scales, near a root (t from the exact path), where F cancels, and where
+// an intermediate cancels; and
 // every residual stays within the degree the argument covers (8: the cone's).
 TEST(MagnitudeFilter, StaticDoubleWordBoundHoldsOnEveryResidual)
 {
@@ -207,8 +208,10 @@ TEST(MagnitudeFilter, StaticDoubleWordBoundHoldsOnEveryResidual)
         const Triangle<double> triangle{p0, p1, v()};
         const Parallelogram<double> parallelogram{p0, p1, v()};
         const Disk<double> disk{p0, p1, r0};
-        // t: random, and the exact path's roots, where F nearly vanishes.
-        std::vector<double> ts{x(), 0.0};
+        // t: random, the exact path's roots, where F nearly vanishes, and the point of the line
+        // nearest p0, where q = o − p0 + t·d cancels before the products take it (hi and lo of an
+        // operand then have comparable sizes: the compensated form's bound must not assume lo ≪ hi).
+        std::vector<double> ts{x(), 0.0, dot(p0 - r.origin, r.direction) / dot(r.direction, r.direction)};
         for (const auto& c : detail::exact_curved_crossings(r, cylinder, true, true, {true, true}, 2)) ts.push_back(c.t);
         for (const auto& c : detail::exact_curved_crossings(r, sphere, false, false, {false, false}, 2)) ts.push_back(c.t);
         for (const double t : ts) {

@@ -66,8 +66,10 @@ inline detail::Residual<N> residual(const Sphere<T>& s, const Vec3<N>& o, const 
 // F(t) = |q|² − r², q = o − c + t·d, to about u² of its magnitude, for the quick lanes' Newton
 // steps (detail::quick_newton_rounded; inputs and t each 0 or within 2^±64, so that no product
 // below underflows: StaticDoubleWord's grid argument, degree 2). Shorter after t than the residual
-// in StaticDoubleWord (callgrind, SSE2, accurate double sphere hits: 1,193 -> 1,060 instructions;
-// 133 -> 109 ns per hit, fast's 75): q's components rounded once, q̃ = fl(u_hi + t·d), with the
+// in StaticDoubleWord (callgrind, SSE2, accurate double sphere hits: 1,193 -> 1,060 instructions,
+// 133 -> 109 ns per hit, fast's 75, against its renormalizing form; 1,166 -> 1,060 and 113 -> 109
+// against its compensated one, which evaluates F much as this does but with q as a full double
+// word and without the cascade's grouping): q's components rounded once, q̃ = fl(u_hi + t·d), with the
 // exact remainder E = q − q̃ from the two-sums and the two-product (computed e within 4.01u²·M of
 // E, M = |u_hi| + |t·d|); F = (Σq̃² − r²) + 2q̃·E + E², the first sum error-free (two-products,
 // a two-sum cascade: Ogita, Rump, Oishi's Dot2) with its low parts, 2q̃·e, and E² (≤ 4.01u²·M²)
