@@ -227,6 +227,42 @@ TEST(MagnitudeFilter, StaticDoubleWordBoundHoldsOnEveryResidual)
     EXPECT_EQ(max_degree, 8);
 }
 
+// An open axial primitive's end route takes the side's sign over an interval around the plane's
+// plain root estimate instead of rounding the plane's root (axial_first_crossing): that interval,
+// linear_root_reach, holds the exact root, decided exactly (|G(t)| <= reach·|df| in expansions),
+// at t̂ = −f/df, a few ulps off it and anywhere, across the static range's scales; and it is finite
+// (df's sign certain) on nearly every plane.
+TEST(MagnitudeFilter, LinearRootReachHoldsThePlanesRoot)
+{
+    std::mt19937_64 rng(0x11AE);
+    int checked = 0, finite = 0;
+    const Magnitude<double> zero{0.0, 0.0, 0, 0, 0};
+    for (int i = 0; i < 20000; ++i) {
+        const int lo = i % 3 == 0 ? -64 : (i % 3 == 1 ? -2 : -30), hi = i % 3 == 0 ? 63 : (i % 3 == 1 ? 2 : 30);
+        const auto x = [&] { return random_number<double>(rng, lo, hi, 8); };
+        const auto v = [&] { return Vec3<double>{x(), x(), x()}; };
+        const Ray<double> r{v(), v()};
+        const Cylinder<double> cylinder{v(), v(), std::abs(x()), Caps::none};
+        const detail::PartCoefficients<Cylinder<double>> plane{&cylinder, &r, i % 2 ? Part::cap0 : Part::cap1};
+        const detail::Residual<Magnitude<double>> g = plane(zero);
+        const double estimate = -g.f.v() / g.df.v();
+        const double ulp = std::nextafter(std::abs(estimate), 1e300) - std::abs(estimate);
+        for (const double t : {estimate, estimate + 3 * ulp, estimate - 7 * ulp, x()}) {
+            if (!std::isfinite(t) || !(t == 0.0 || (std::abs(t) >= 0x1p-64 && std::abs(t) <= 0x1p64))) continue;
+            const double reach = detail::linear_root_reach(g, t);
+            ++checked;
+            if (!std::isfinite(reach)) continue;
+            ++finite;
+            const Expansion<double> at_t = plane.at(Expansion<double>{t}).f, slope = plane.at(Expansion<double>{0.0}).df;
+            const Expansion<double> room = slope.sign() < 0 ? -(Expansion<double>(reach) * slope) : Expansion<double>(reach) * slope;
+            EXPECT_GE((room - at_t).sign(), 0) << i << " t " << t << " reach " << reach;
+            EXPECT_GE((room + at_t).sign(), 0) << i << " t " << t << " reach " << reach;
+        }
+    }
+    EXPECT_GT(checked, 20000);
+    EXPECT_GT(finite, checked * 9 / 10);
+}
+
 // The sphere's quick lane against the full exact path on one query: where the lane answers, the
 // same crossings (count, t bit for bit, part, direction). The number of crossings, or none when
 // the lane declined.
