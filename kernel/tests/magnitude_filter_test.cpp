@@ -9,6 +9,7 @@
 #include <limits>
 #include <optional>
 #include <random>
+#include <vector>
 
 #include <rayq/detail/expansion.hpp>
 #include <rayq/detail/double_word.hpp>
@@ -105,6 +106,34 @@ TEST(MagnitudeFilter, ExactRangeIncludesZeroAndBothEnds)
 {
     expect_exact_range_boundaries<float>();
     expect_exact_range_boundaries<double>();
+}
+
+// StaticRange (all_within_static_range), which decides many double inputs at once from their largest
+// and smallest nonzero magnitudes, gives the same answer as each input's own test, for every triple
+// of boundary values (zeros of both signs, both ends and their neighbours, subnormals, NaN,
+// infinities) in every order; float inputs always lie within it.
+TEST(MagnitudeFilter, StaticRangeDecidesAsEachInputDoes)
+{
+    using detail::next_down;
+    using detail::next_up;
+    const double lo = 0x1p-64, hi = 0x1p64, inf = std::numeric_limits<double>::infinity();
+    std::vector<double> values;
+    for (const double x : {0.0, lo, hi, next_up(lo), next_down(hi), 1.0, next_down(lo), next_up(hi), std::numeric_limits<double>::denorm_min(),
+                           std::numeric_limits<double>::min(), std::numeric_limits<double>::max(), inf, std::numeric_limits<double>::quiet_NaN()})
+        values.push_back(x), values.push_back(-x);
+    int in = 0, out = 0;
+    for (const double a : values)
+        for (const double b : values)
+            for (const double c : values) {
+                const bool each = detail::zero_or_within_exact_range(a) && detail::zero_or_within_exact_range(b) && detail::zero_or_within_exact_range(c);
+                ASSERT_EQ(detail::all_within_static_range(a, b, c), each) << a << " " << b << " " << c;
+                ASSERT_EQ(detail::all_within_static_range(Vec3<double>{a, b, c}), each) << a << " " << b << " " << c;
+                ASSERT_EQ(detail::all_within_static_range(Vec3<double>{a, 1.0, -1.0}, Vec3<double>{0.0, b, 2.0}, c), each);
+                ++(each ? in : out);
+            }
+    EXPECT_GT(in, 1000);
+    EXPECT_GT(out, 1000);
+    EXPECT_TRUE(detail::all_within_static_range(Vec3<float>{0.0f, 1e-40f, std::numeric_limits<float>::max()}, 1e30f));
 }
 
 // One root's interval (root_interval, for a caller that needs one) is the one root_intervals gives
@@ -269,15 +298,25 @@ TEST(MagnitudeFilter, LinearRootReachHoldsThePlanesRoot)
 template <class T>
 std::optional<int> sphere_lane_answer(const Ray<T>& r, const Sphere<T>& s, int limit, int i)
 {
-    const auto quick = detail::quick_curved_crossings(r, s, false, false, {false, false}, limit);
-    if (!quick) return std::nullopt;
     const auto exact = detail::exact_curved_crossings_in_unit(r, s, false, false, {false, false}, limit, detail::reach_of(r, s));
-    EXPECT_EQ(quick->count, exact.count) << i << " limit " << limit;
-    for (int k = 0; k < std::min(quick->count, exact.count); ++k) {
-        EXPECT_EQ(quick->item[k].t, exact.item[k].t) << i << " limit " << limit << " crossing " << k;
-        EXPECT_EQ(quick->item[k].part, exact.item[k].part) << i;
-        EXPECT_EQ(quick->item[k].entering, exact.item[k].entering) << i;
+    const auto expect_exact = [&](const Crossings<T>& quick, const char* lane) {
+        EXPECT_EQ(quick.count, exact.count) << lane << " " << i << " limit " << limit;
+        for (int k = 0; k < std::min(quick.count, exact.count); ++k) {
+            EXPECT_EQ(quick.item[k].t, exact.item[k].t) << lane << " " << i << " limit " << limit << " crossing " << k;
+            EXPECT_EQ(quick.item[k].part, exact.item[k].part) << lane << " " << i;
+            EXPECT_EQ(quick.item[k].entering, exact.item[k].entering) << lane << " " << i;
+        }
+    };
+    // A double sphere's own lane (from plain coefficients, as crossings(accurate) calls it where
+    // the plain discriminant is positive), and the filter's lane, each checked where it answers.
+    bool answered = false;
+    if constexpr (std::is_same_v<T, double>) {
+        const detail::PlainQuadratic q = detail::plain_quadratic(r, s);
+        if (q.d > 0.0)
+            if (const auto own = detail::quick_sphere_crossings(r, s, q, limit)) expect_exact(*own, "sphere lane"), answered = true;
     }
+    if (const auto quick = detail::quick_curved_crossings(r, s, false, false, {false, false}, limit)) expect_exact(*quick, "filter lane"), answered = true;
+    if (!answered) return std::nullopt;
     return exact.count;
 }
 

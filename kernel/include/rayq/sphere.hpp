@@ -99,12 +99,23 @@ RAYQ_INLINE detail::Estimate<T> quick_residual_f(const Sphere<T>& s, const Ray<T
 }
 
 // Accurate: exact decisions, correctly rounded t (detail/exact_crossings.hpp). A ray whose line
-// certainly passes the sphere is answered first (batch::exactly_missed_sphere): ~10× cheaper than
-// the exact path's filtered predicates on such misses.
+// certainly passes the sphere is answered by batch::exactly_missed_sphere: ~10× cheaper than the
+// exact path's filtered predicates on such misses. A double ray whose plain discriminant is
+// positive, nearly always a hit, skips that test and goes straight to the sphere's quick lane
+// (quick_sphere_crossings; pt.cpp, SSE2, min of 31 runs: hits 117 -> 114 ns, misses 7.3 -> 8.1).
 template <class T>
 inline Crossings<T> crossings(accurate_policy, const Ray<T>& ray, const Sphere<T>& s, int limit = 2)
 {
-    if (batch::exactly_missed_sphere(ray, s.center, s.radius)) return {};
+    if constexpr (std::is_same_v<T, double>) {
+        const detail::PlainQuadratic q = detail::plain_quadratic(ray, s);
+        if (q.d > T(0)) {
+            if (const auto quick = detail::quick_sphere_crossings(ray, s, q, limit)) return *quick;
+        } else if (batch::exactly_missed_sphere(ray, s.center, s.radius)) {
+            return {};
+        }
+    } else if (batch::exactly_missed_sphere(ray, s.center, s.radius)) {
+        return {};
+    }
     return detail::exact_curved_crossings(ray, s, false, false, {false, false}, limit);
 }
 
