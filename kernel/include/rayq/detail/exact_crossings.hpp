@@ -1099,9 +1099,6 @@ RAYQ_FLATTEN inline std::optional<Crossings<T>> quick_solid_crossings(const Ray<
     if constexpr (!std::is_same_v<T, float> && is_magnitude<F>::value) {
         if (!inputs_within_static_range(ray, prim)) return std::nullopt;
     }
-    if constexpr (axial && has_axis_ends<Prim>::value && !std::is_same_v<T, float> && is_magnitude<F>::value) {
-        if (const auto out = axial_first_crossing(ray, prim, capped, ends, limit)) return out;
-    }
     bool undecided = false;
     const QuickSolid<Prim, F> solid(ray, prim, axial, undecided);
     if (undecided) return std::nullopt;
@@ -1150,8 +1147,9 @@ RAYQ_FLATTEN inline std::optional<Crossings<T>> quick_solid_crossings(const Ray<
 // lane; ns per ray over hits and misses (min of 31 runs) 69 -> 63, fast's 44.
 // Its own function, called by the sphere (sphere.hpp) before the rest of the quick lane, not a
 // branch inside quick_solid_crossings: that flattened function spills much of its state on entry,
-// which every hit paid (pt.cpp, SSE2, min of 31 runs: 117 -> 102 ns per hit; per ray over hits
-// and misses 63.3 -> 57.1, fast's 47.4).
+// which every hit paid (pt.cpp, SSE2, min of 31 runs, with the sphere's miss test moved behind
+// the plain discriminant and StaticRange: 117 -> 106 ns per hit; per ray over hits and misses
+// 63.3 -> 59.2, fast's 47.4).
 struct PlainQuadratic {
     Residual<double> r;  // F(0), F'(0), a
     double d;            // F'(0)² − 4·a·F(0)
@@ -1175,11 +1173,28 @@ RAYQ_FLATTEN inline std::optional<Crossings<double>> quick_sphere_crossings(cons
     });
 }
 
+// A double axial primitive's closest crossing by axial_first_crossing, flattened on its own before
+// the rest of the quick lane (as the sphere's, quick_sphere_crossings): inside quick_solid_crossings,
+// whose entry spills much of its state, every hit paid for that function (pt.cpp, SSE2, min of
+// 31 runs, accurate double, ns per ray over hits and misses: capped cylinder 117.3 -> 108.1, open
+// 129.0 -> 118.8, frustum 150.9 -> 139.0; fast's 90.6, 102.3, 117.3).
+template <class Prim>
+RAYQ_FLATTEN inline std::optional<Crossings<double>> quick_axial_crossing(const Ray<double>& ray, const Prim& prim, bool capped, CapEnds ends,
+                                                                          int limit)
+{
+    if (!inputs_within_static_range(ray, prim)) return std::nullopt;
+    return axial_first_crossing(ray, prim, capped, ends, limit);
+}
+
 // (Axial as a constant, so that a sphere's lane carries no cap logic.)
 template <class Prim>
 inline std::optional<Crossings<scalar_t<Prim>>> quick_curved_crossings(const Ray<scalar_t<Prim>>& ray, const Prim& prim, bool axial, bool capped,
                                                                        CapEnds ends, int limit)
 {
+    if constexpr (has_axis_ends<Prim>::value && std::is_same_v<scalar_t<Prim>, double>) {
+        if (axial)
+            if (const auto out = quick_axial_crossing(ray, prim, capped, ends, limit)) return out;
+    }
     return axial ? quick_solid_crossings<true>(ray, prim, capped, ends, limit) : quick_solid_crossings<false>(ray, prim, capped, ends, limit);
 }
 
