@@ -97,7 +97,8 @@ template <class T> RAYQ_INLINE Bounded<T>& operator+=(Bounded<T>& a, Bounded<T> 
 template <class T> RAYQ_INLINE T upper(T v, T e) { return e == T(0) ? std::abs(v) : grow(std::abs(v) + e); }
 template <class T> RAYQ_INLINE T upper(Bounded<T> a) { return upper(a.v, a.e); }
 // (|v| − e) rounded toward zero: one rounding of relative size <= u, removed by (1 − 2u).
-template <class T> RAYQ_INLINE T lower(Bounded<T> a) { return (std::abs(a.v) - grow_inexact(a.e)) * (T(1) - T(2) * unit_roundoff<T>); }
+template <class T> RAYQ_INLINE T lower(T v, T e) { return (std::abs(v) - e) * (T(1) - T(2) * unit_roundoff<T>); }
+template <class T> RAYQ_INLINE T lower(Bounded<T> a) { return lower(a.v, grow_inexact(a.e)); }
 
 // An input vector as numbers of type N (Bounded<T>: exact, error 0; Expansion<T>: one component).
 template <class N, class T> RAYQ_INLINE Vec3<N> lift(const Vec3<T>& v) { return {N{v.x}, N{v.y}, N{v.z}}; }

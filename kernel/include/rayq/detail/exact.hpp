@@ -248,7 +248,7 @@ inline std::optional<T> newton_step(const Estimate<T>& f, const Estimate<T>& df,
 {
     const T u = unit_roundoff<T>;
     const T fv = f.v, dv = df.v, f_err = f.e, d_err = df.e;
-    const T d_min = (std::abs(dv) - d_err) * (T(1) - T(2) * u);
+    const T d_min = lower(dv, d_err);
     if (!(d_min > T(0))) return std::nullopt;
     // The nearest root is the requested one: F' has the sign of an entry (−sign a) at the smaller root.
     if (sign_a != 0 && (dv > T(0) ? 1 : -1) * sign_a != (which == 0 ? -1 : 1)) return std::nullopt;
