@@ -165,8 +165,7 @@ RAYQ_INLINE std::pair<W, W> midpoints_around(T t)
         // Half the spacing from t's exponent bits (the hot case, inline and without branches on
         // the neighbours): 2^(E − 24) away from zero, and half that toward zero when |t| is a
         // power of two above FLT_MIN. Subnormal t (exponent bits 0) takes the general form below.
-        std::uint32_t bits;
-        std::memcpy(&bits, &t, sizeof bits);
+        const std::uint32_t bits = bits_of(t);
         const std::uint32_t exponent = bits & 0x7f800000u;
         if (exponent != 0) {
             float power;  // 2^E, |t| in [2^E, 2^(E+1))

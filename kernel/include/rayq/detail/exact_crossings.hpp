@@ -306,15 +306,8 @@ constexpr bool within_exact_range(T magnitude) { return magnitude >= T(0x1p-64) 
 template <class T>
 RAYQ_INLINE bool zero_or_between(T x, T lo, T hi)
 {
-    static_assert(std::numeric_limits<T>::is_iec559 && (sizeof(T) == 4 || sizeof(T) == 8));
-    using Bits = std::conditional_t<sizeof(T) == 4, std::uint32_t, std::uint64_t>;
-    const auto bits = [](T y) {
-        Bits b;
-        std::memcpy(&b, &y, sizeof b);
-        return b;
-    };
-    const Bits magnitude = bits(x) & (bits(-T(0)) - 1);
-    return (magnitude - bits(lo) <= bits(hi) - bits(lo)) | (magnitude == 0);
+    const auto magnitude = magnitude_bits(x);
+    return (magnitude - bits_of(lo) <= bits_of(hi) - bits_of(lo)) | (magnitude == 0);
 }
 // A value the exact expansions take as it is: zero, or its magnitude within range.
 template <class T>
@@ -349,7 +342,7 @@ public:
     RAYQ_INLINE StaticRange& add(T x)
     {
         if constexpr (!std::is_same_v<T, float>) {
-            const std::uint64_t magnitude = bits(x) & ~(std::uint64_t(1) << 63);
+            const std::uint64_t magnitude = magnitude_bits(x);
             largest_ = std::max(largest_, magnitude);
             smallest_less_one_ = std::min(smallest_less_one_, magnitude - 1);
         }
@@ -360,16 +353,10 @@ public:
     RAYQ_INLINE bool holds() const
     {
         if constexpr (std::is_same_v<T, float>) return true;
-        else return all_evaluated(largest_ <= bits(0x1p64), smallest_less_one_ >= bits(0x1p-64) - 1);
+        else return all_evaluated(largest_ <= bits_of(0x1p64), smallest_less_one_ >= bits_of(0x1p-64) - 1);
     }
 
 private:
-    static RAYQ_INLINE std::uint64_t bits(double x)
-    {
-        std::uint64_t b;
-        std::memcpy(&b, &x, sizeof b);
-        return b;
-    }
     std::uint64_t largest_ = 0, smallest_less_one_ = ~std::uint64_t(0);
 };
 // A primitive's inputs and the ray's.

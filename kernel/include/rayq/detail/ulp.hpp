@@ -11,17 +11,27 @@
 
 namespace rayq::detail {
 
+// x's IEEE 754 encoding as an unsigned integer of its width.
+template <class T>
+RAYQ_INLINE auto bits_of(T x)
+{
+    static_assert(std::numeric_limits<T>::is_iec559 && (sizeof(T) == 4 || sizeof(T) == 8));
+    std::conditional_t<sizeof(T) == 4, std::uint32_t, std::uint64_t> b;
+    std::memcpy(&b, &x, sizeof b);
+    return b;
+}
+// |x|'s encoding: for magnitudes the unsigned integers' order is the floats' (NaN above infinity).
+template <class T>
+RAYQ_INLINE auto magnitude_bits(T x) { return bits_of(x) & (bits_of(-T(0)) - 1); }
+
 // The next float above x (IEEE 754 nextUp): +inf and NaN stay, −inf becomes −max, ±0 the
 // smallest subnormal. Equal to std::nextafter(x, +inf).
 template <class T>
 RAYQ_INLINE T next_up(T x)
 {
-    static_assert(std::numeric_limits<T>::is_iec559 && (sizeof(T) == 4 || sizeof(T) == 8));
-    using Bits = std::conditional_t<sizeof(T) == 4, std::uint32_t, std::uint64_t>;
     if (x != x || x == std::numeric_limits<T>::infinity()) return x;
     if (x == T(0)) return std::numeric_limits<T>::denorm_min();
-    Bits b;
-    std::memcpy(&b, &x, sizeof b);
+    auto b = bits_of(x);
     b = x > T(0) ? b + 1 : b - 1;  // sign-magnitude: a step away from zero for positives, toward it for negatives
     std::memcpy(&x, &b, sizeof b);
     return x;
