@@ -70,6 +70,13 @@ struct World {
             const auto h = intersect(stable, out, s);
             if (h) out.tmax = std::nextafter(h->t, uniform(0, 1) < 0.5 ? T(0) : std::numeric_limits<T>::infinity());
             if (uniform(0, 1) < 0.3) out.tmin = -out.tmax;
+        } else if (uniform(0, 1) < 0.25) {  // one that starts just before or after the ray leaves the sphere
+            const auto all = intersect_all(stable, out, s, HitFields::t);
+            if (!all.empty()) {
+                out.tmin = std::nextafter(all[all.size() - 1].hit.t, uniform(0, 1) < 0.5 ? -std::numeric_limits<T>::infinity()
+                                                                                          : std::numeric_limits<T>::infinity());
+                if (!(out.tmin < out.tmax)) out.tmin = T(0);
+            }
         }
         return out;
     }

@@ -53,7 +53,7 @@ struct SphereSoA {
 };
 
 // The line test of sphere_candidates: which lanes of group g the ray's line certainly passes by,
-// and u·d/√(1 − Kε) (times f.line_inv_len2: the center's t).
+// and u·d/√(1 − Kε) (times −√(1 − Kε)/|d|²: the center's t).
 template <class P>
 struct SphereLine {
     P ud;
@@ -99,20 +99,26 @@ RAYQ_INLINE std::uint32_t sphere_candidates(const SphereFilterRay<T>& f, T tmin,
 {
     using L = detail::Lanes<T>;
     using P = typename L::pack;
-    const T sqrt_k_eps = std::sqrt(SphereFilterRay<T>::k_eps());
+    const T sqrt_k_eps = SphereFilterRay<T>::sqrt_k_eps;
     if (f.extreme) return s.live(g);
     const SphereLine<P> l = sphere_line(f, s, g);
-    const P ud = l.ud, r = L::load(&s.r[g * L::width]);
+    const P r = L::load(&s.r[g * L::width]);
     const auto line_far = l.far;
     if (detail::all_lanes(line_far)) return 0;  // the common case in a scene: no lane near the line
     // The crossings lie in tc ± r/|d|; a policy's t errs by at most √(Kε)·(|tc| + 2r/|d|) (the
-    // square root of the discriminant's error near tangency: Ray Tracing Gems ch. 7).
-    const auto& w = f.window();
-    const P tc = -ud * P(w.line_inv_len2);
-    const P rad = detail::abs_lanes(r) * P(w.inv_len);
-    const P margin = rad + P(sqrt_k_eps) * (detail::abs_lanes(tc) + rad + rad) + P(w.t_slack_abs);
-    const auto behind = tc + margin < P(tmin);
-    const auto beyond = tc - margin > P(tmax);
+    // square root of the discriminant's error near tangency: Ray Tracing Gems ch. 7). So the
+    // sphere lies behind the window where (1 + 2√(Kε))·r/|d| < tmin − tc − √(Kε)·|tc| − slack_t,
+    // and beyond it where the same is below tc − √(Kε)·|tc| − slack_t − tmax. Times |d|² and
+    // squared, neither needs |d| (a square root and a division on the way to a ray's first
+    // candidate): x > 0 and x² > (1 + 2√(Kε))²·r²·|d|², with x = (tmin − tc − …)·|d|², tc·|d|² =
+    // −u·d. The comparison's own rounding (a few ε of its terms) is far inside the √(Kε) margin.
+    const P e = -l.ud * P(SphereFilterRay<T>::line_root);  // tc·|d|²
+    const P se = P(sqrt_k_eps) * detail::abs_lanes(e);
+    const P rhs = r * r * P(f.window_r2);
+    const P x_behind = P(tmin * f.dd - f.t_slack_dd) - e - se;
+    const P x_beyond = e - se - P(tmax * f.dd + f.t_slack_dd);
+    const auto behind = x_behind > P(0) && x_behind * x_behind > rhs;
+    const auto beyond = x_beyond > P(0) && x_beyond * x_beyond > rhs;
     const auto drop = line_far || behind || beyond;
     return ~L::bits(drop) & s.live(g);
 }
