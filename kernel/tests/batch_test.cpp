@@ -4,6 +4,7 @@
 // batch patterns (one ray against many primitives in a Scene, many rays against one primitive)
 // answer exactly what the scalar queries answer, bit for bit, for every policy and type.
 #include <bitset>
+#include <cstdint>
 #include <functional>
 #include <random>
 #include <tuple>
@@ -471,6 +472,29 @@ TYPED_TEST(BatchTest, SceneOfEveryBoundedTypeEqualsTheScalarLoop)
         EXPECT_EQ(got->type, expected->type);
         EXPECT_EQ(got->index, expected->index);
         expect_same(std::optional<Hit<T>>(got->hit), std::optional<Hit<T>>(expected->hit));
+    }
+}
+
+// Every lane column starts on a 64-byte boundary (detail::LaneAllocator), so no lane group's load
+// spans two cache lines, whatever the allocator would otherwise have returned.
+TYPED_TEST(BatchTest, LaneColumnsStartOnACacheLine)
+{
+    using T = typename TypeParam::T;
+    const auto aligned = [](const auto& column) { return reinterpret_cast<std::uintptr_t>(column.data()) % 64 == 0; };
+    batch::SphereSoA<T> spheres;
+    batch::BoundSoA<T> bounds;
+    batch::RayStream<T> rays;
+    std::vector<char> interleave;  // other allocations between the columns' growth
+    for (int i = 0; i < 40; ++i) {
+        spheres.push_back(Sphere<T>{{T(i), T(0), T(0)}, T(1)});
+        bounds.push_back(Cylinder<T>{{T(i), T(0), T(0)}, {T(i), T(1), T(0)}, T(0.5), Caps::both});
+        rays.push_back(Ray<T>{{T(0), T(0), T(i)}, {T(1), T(0), T(0)}});
+        interleave.resize(interleave.size() + 24);
+        for (const auto* c : {&spheres.cx, &spheres.cy, &spheres.cz, &spheres.r, &spheres.reach2}) EXPECT_TRUE(aligned(*c));
+        for (const auto* c : {&bounds.cx, &bounds.cy, &bounds.cz, &bounds.reach, &bounds.far, &bounds.wx, &bounds.wy, &bounds.wz})
+            EXPECT_TRUE(aligned(*c));
+        for (const auto* c : {&rays.ox, &rays.oy, &rays.oz, &rays.dx, &rays.dy, &rays.dz, &rays.abs_slack, &rays.tmin, &rays.tmax})
+            EXPECT_TRUE(aligned(*c));
     }
 }
 

@@ -185,15 +185,15 @@ struct PrimitiveBound {
 template <class T>
 struct BoundSoA {
     static constexpr int width = rayq::detail::Lanes<T>::width;
-    std::vector<T> cx, cy, cz, reach, far;  // PrimitiveBound of each primitive
-    std::vector<T> wx, wy, wz;
+    rayq::detail::LaneColumn<T> cx, cy, cz, reach, far;  // PrimitiveBound of each primitive
+    rayq::detail::LaneColumn<T> wx, wy, wz;
     bool planar = false;  // some primitive has a plane test
     std::size_t count = 0;
 
     void push_back(const BoundingSphere<T>& b)
     {
         if (count % width == 0) {
-            for (std::vector<T>* v : {&cx, &cy, &cz, &reach, &far, &wx, &wy, &wz}) v->resize(v->size() + width, T(0));
+            for (rayq::detail::LaneColumn<T>* v : {&cx, &cy, &cz, &reach, &far, &wx, &wy, &wz}) v->resize(v->size() + width, T(0));
         }
         const PrimitiveBound<T> p(b);
         cx[count] = p.center.x;
@@ -274,15 +274,15 @@ template <class T>
 struct RayStream {
     std::vector<Ray<T>> rays;
     static constexpr int width = rayq::detail::Lanes<T>::width;
-    std::vector<T> ox, oy, oz, dx, dy, dz, abs_slack;  // d: the unit direction
-    std::vector<T> tmin, tmax, inv_len, t_slack_abs;    // the window test's (exact policies)
+    rayq::detail::LaneColumn<T> ox, oy, oz, dx, dy, dz, abs_slack;  // d: the unit direction
+    rayq::detail::LaneColumn<T> tmin, tmax, inv_len, t_slack_abs;    // the window test's (exact policies)
     std::vector<unsigned char> usable_ray;
     std::size_t count = 0;
 
     void clear()
     {
         rays.clear();
-        for (std::vector<T>* v : columns()) v->clear();
+        for (rayq::detail::LaneColumn<T>* v : columns()) v->clear();
         usable_ray.clear();
         count = 0;
     }
@@ -290,7 +290,7 @@ struct RayStream {
     {
         rays.push_back(ray);
         if (count % width == 0) {
-            for (std::vector<T>* v : columns()) v->resize(v->size() + width, T(0));
+            for (rayq::detail::LaneColumn<T>* v : columns()) v->resize(v->size() + width, T(0));
             usable_ray.resize(usable_ray.size() + width, 0);
         }
         usable_ray[count] = usable(ray);
@@ -313,7 +313,7 @@ struct RayStream {
     }
 
 private:
-    std::array<std::vector<T>*, 11> columns() { return {&ox, &oy, &oz, &dx, &dy, &dz, &abs_slack, &tmin, &tmax, &inv_len, &t_slack_abs}; }
+    std::array<rayq::detail::LaneColumn<T>*, 11> columns() { return {&ox, &oy, &oz, &dx, &dy, &dz, &abs_slack, &tmin, &tmax, &inv_len, &t_slack_abs}; }
 };
 
 // Bit i set: ray i of lane group g may hit the primitive bounded by `b` under `Policy`.

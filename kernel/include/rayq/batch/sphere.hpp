@@ -24,14 +24,14 @@ namespace rayq::batch {
 template <class T>
 struct SphereSoA {
     static constexpr int width = detail::Lanes<T>::width;
-    std::vector<T> cx, cy, cz, r;
-    std::vector<T> reach2;  // r²·(1 + Kε)/(1 − Kε): the line test's side of each sphere (sphere_line)
+    rayq::detail::LaneColumn<T> cx, cy, cz, r;
+    rayq::detail::LaneColumn<T> reach2;  // r²·(1 + Kε)/(1 − Kε): the line test's side of each sphere (sphere_line)
     std::size_t count = 0;
 
     void push_back(const Sphere<T>& s)
     {
         if (count % width == 0) {  // open a new lane group, filled with padding
-            for (std::vector<T>* v : {&cx, &cy, &cz, &r, &reach2}) v->resize(v->size() + width, T(0));
+            for (rayq::detail::LaneColumn<T>* v : {&cx, &cy, &cz, &r, &reach2}) v->resize(v->size() + width, T(0));
         }
         cx[count] = s.center.x;
         cy[count] = s.center.y;

@@ -8,9 +8,12 @@
 // under AVX-512, whose <experimental/simd> miscompiled in our measurements: issue 7).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
+#include <new>
 #include <type_traits>
 #include <utility>
+#include <vector>
 
 #if !defined(RAYQ_NO_STD_SIMD) && defined(__has_include)
 #if __has_include(<experimental/simd>)
@@ -83,6 +86,26 @@ inline P abs_lanes(const P& v)
     else return std::experimental::abs(v);
 #endif
 }
+
+// Lane columns (structure of arrays) start on a 64-byte boundary, so that a lane group's load never
+// spans two cache lines: std::vector's default allocation is only 16-byte aligned, and at 16 float
+// lanes every group of such a column was a split load.
+template <class T>
+struct LaneAllocator {
+    using value_type = T;
+    static constexpr std::size_t alignment = 64;
+    LaneAllocator() = default;
+    template <class U>
+    LaneAllocator(const LaneAllocator<U>&) noexcept {}
+    T* allocate(std::size_t n) { return static_cast<T*>(::operator new(n * sizeof(T), std::align_val_t{alignment})); }
+    void deallocate(T* p, std::size_t) noexcept { ::operator delete(p, std::align_val_t{alignment}); }
+    template <class U>
+    bool operator==(const LaneAllocator<U>&) const noexcept { return true; }
+    template <class U>
+    bool operator!=(const LaneAllocator<U>&) const noexcept { return false; }
+};
+template <class T>
+using LaneColumn = std::vector<T, LaneAllocator<T>>;
 
 // Index of the lowest set bit of a nonzero lane mask.
 inline int lowest_bit(std::uint32_t m)
