@@ -65,6 +65,11 @@ struct World {
             if (kind == 3) o = c + unit_vector() * (r * uniform(0, 1));  // from inside
         }
         if (kind == 4) d = d * log_uniform(1e-15, 1e15);                 // unusual direction length
+        // or one so short that |d|² underflows or is subnormal (float 1e-25..1e-15, double 1e-165..1e-145)
+        if (kind == 4 && uniform(0, 1) < 0.3) {
+            const bool single = std::is_same_v<T, float>;
+            d = d / length(d) * log_uniform(single ? 1e-25 : 1e-165, single ? 1e-15 : 1e-145);
+        }
         Ray<T> out{cast(o), cast(d)};
         if (kind == 5 || uniform(0, 1) < 0.2) {  // a window that may end just before or after a hit
             const auto h = intersect(stable, out, s);

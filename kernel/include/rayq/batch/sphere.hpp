@@ -112,6 +112,9 @@ RAYQ_INLINE std::uint32_t sphere_candidates(const SphereFilterRay<T>& f, T tmin,
     // squared, neither needs |d| (a square root and a division on the way to a ray's first
     // candidate): x > 0 and x² > (1 + 2√(Kε))²·r²·|d|², with x = (tmin − tc − …)·|d|², tc·|d|² =
     // −u·d. The comparison's own rounding (a few ε of its terms) is far inside the √(Kε) margin.
+    // Underflow needs no slack of its own: x > 0 puts tmin or tmax more than slack_t from tc, so a
+    // dropped sphere the policy hits in the window would have (1 + 2√(Kε))·r/|d| > slack_t ≥
+    // √(K·min)/|d|·max(1, 1/|d|): its right side exceeds K·min, a normal number, rounded, not flushed.
     const P e = -l.ud * P(SphereFilterRay<T>::line_root);  // tc·|d|²
     const P se = P(sqrt_k_eps) * detail::abs_lanes(e);
     const P rhs = r * r * P(f.window_r2);
