@@ -103,8 +103,9 @@ struct RayScale {
 
 // The sphere filter's ray: the line test's side of it (sphere_line), whose comparison is divided
 // by 1 − Kε and multiplied by |d|²: d/√(1 − Kε), |d|², the underflow slack times |d|²/(1 − Kε)
-// (k_min·(|d|² + 1): no subnormal step); and the window test's, which is multiplied by |d|² and
-// squared (sphere_candidates). Neither needs a square root or a division: most rays of a scene pass
+// (k_min·(|d|² + 1): no subnormal step). The window test (sphere_candidates) is multiplied by |d|²
+// and squared, and takes its terms from |d|² where it runs. Neither needs a square root or a
+// division: most rays of a scene pass
 // every group by the line test alone, and a ray with a candidate no longer waits for |d| and 1/|d|
 // before its first scalar test (rayq-bench-embree, -march=native, float spheres under `fast` with
 // point and normal, medians of 5, µs per 4,096 rays: 1,000 spheres 493 -> 478–484, 16 spheres 51 ->
@@ -122,13 +123,8 @@ struct SphereFilterRay : FilterRay<T> {
         dd = dot(ray.direction, ray.direction);
         line_slack = FilterRay<T>::k_min * (dd + T(1)) * (line_scale * line_scale);
         extreme = !(dd < this->huge * this->huge && this->o1 < this->huge);
-        window_r2 = dd * (T(1) + T(2) * sqrt_k_eps) * (T(1) + T(2) * sqrt_k_eps);
-        t_slack_dd = FilterRay<T>::sqrt_k_min * (T(0.5) + T(1.5) * dd);
     }
     static inline const T line_root = std::sqrt(T(1) - FilterRay<T>::k_eps()), line_scale = T(1) / line_root;
-    static inline const T sqrt_k_eps = std::sqrt(FilterRay<T>::k_eps());
-    T window_r2;   // (1 + 2√(Kε))²·|d|²
-    T t_slack_dd;  // at least RayScale's t_slack_abs·|d|² = √(K·min)·(|d| + |d|²), as |d| ≤ (1 + |d|²)/2
 };
 
 template <class T>

@@ -99,7 +99,7 @@ RAYQ_INLINE std::uint32_t sphere_candidates(const SphereFilterRay<T>& f, T tmin,
 {
     using L = detail::Lanes<T>;
     using P = typename L::pack;
-    const T sqrt_k_eps = SphereFilterRay<T>::sqrt_k_eps;
+    const T sqrt_k_eps = std::sqrt(SphereFilterRay<T>::k_eps());
     if (f.extreme) return s.live(g);
     const SphereLine<P> l = sphere_line(f, s, g);
     const P r = L::load(&s.r[g * L::width]);
@@ -117,9 +117,12 @@ RAYQ_INLINE std::uint32_t sphere_candidates(const SphereFilterRay<T>& f, T tmin,
     // √(K·min)/|d|·max(1, 1/|d|): its right side exceeds K·min, a normal number, rounded, not flushed.
     const P e = -l.ud * P(SphereFilterRay<T>::line_root);  // tc·|d|²
     const P se = P(sqrt_k_eps) * detail::abs_lanes(e);
-    const P rhs = r * r * P(f.window_r2);
-    const P x_behind = P(tmin * f.dd - f.t_slack_dd) - e - se;
-    const P x_beyond = e - se - P(tmax * f.dd + f.t_slack_dd);
+    const T widen = T(1) + T(2) * sqrt_k_eps;
+    // slack_t·|d|² = √(K·min)·(|d| + |d|²) at most √(K·min)·(1/2 + 3|d|²/2), as |d| ≤ (1 + |d|²)/2.
+    const T t_slack_dd = FilterRay<T>::sqrt_k_min * (T(0.5) + T(1.5) * f.dd);
+    const P rhs = r * r * P(f.dd * widen * widen);
+    const P x_behind = P(tmin * f.dd - t_slack_dd) - e - se;
+    const P x_beyond = e - se - P(tmax * f.dd + t_slack_dd);
     const auto behind = x_behind > P(0) && x_behind * x_behind > rhs;
     const auto beyond = x_beyond > P(0) && x_beyond * x_beyond > rhs;
     const auto drop = line_far || behind || beyond;
