@@ -215,5 +215,30 @@ TYPED_TEST(SceneTest, BadRaysAndInvalidPrimitivesNeverHit)
     EXPECT_FALSE(occluded(TypeParam::policy, forward, empty));
 }
 
+// complete() builds the record of the crossing it is given, even where that primitive's crossings,
+// computed again, would not name it (GCC contracting a·b + c differently in the search and in the
+// scalar query, on FMA targets): an exit while the entry lies in the window gets a bound reaching
+// back to tmin; a point where the ray misses gets a record whose bound claims nothing. (It called
+// intersect() before, which returned the entry, and for the miss threw std::bad_optional_access.)
+TYPED_TEST(SceneTest, CompleteBuildsTheRecordOfTheCrossingItIsGiven)
+{
+    using T = typename TypeParam::T;
+    Scene<Sphere<T>> scene;
+    scene.add(Sphere<T>{v3<T>(0, 0, 5), T(1)});
+    const Ray<T> through = ray(v3<T>(0, 0, 0), v3<T>(0, 0, 1));
+    const SceneHit<T> exit = complete(TypeParam::policy, through, scene, SceneRef<T>{T(6), 0, 0, Part::surface, false});
+    EXPECT_EQ(exit.hit.t, T(6));
+    EXPECT_FALSE(exit.hit.front_face);
+    EXPECT_GE(exit.hit.t_error, T(6));  // the entry at 4 may be the first hit: back to tmin = 0
+    EXPECT_EQ(exit.hit.normal.z, T(-1));  // leaving: faces the ray from inside
+    const SceneHit<T> entry = complete(TypeParam::policy, through, scene, SceneRef<T>{T(4), 0, 0, Part::surface, true});
+    EXPECT_EQ(entry.hit.t, T(4));
+    EXPECT_LT(entry.hit.t_error, T(1e-3));  // nothing before it: not widened
+    const Ray<T> past = ray(v3<T>(T(1.5), 0, 0), v3<T>(0, 0, 1));  // 1.5 from the center: no root at all
+    const SceneHit<T> none = complete(TypeParam::policy, past, scene, SceneRef<T>{T(5), 0, 0, Part::surface, true});
+    EXPECT_EQ(none.hit.t, T(5));
+    EXPECT_TRUE(std::isinf(none.hit.t_error));
+}
+
 }  // namespace
 }  // namespace rayq::test::scene_test

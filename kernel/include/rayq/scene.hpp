@@ -14,7 +14,12 @@
 // Any-hit (occluded) returns at the first hit.
 //
 // The answers are exactly those of the scalar queries run over every primitive in order
-// (types in list order, primitives in insertion order; the first of equal t wins): a test.
+// (types in list order, primitives in insertion order; the first of equal t wins): a test. Exactly,
+// that is, where the compiler rounds the same expression the same way in both places: GCC on FMA
+// targets (-march=native) contracts a·b + c into fused multiply-adds by default, and differently in
+// different inlined contexts, so a `fast` or `stable` crossing near tangency may then differ (5% of
+// rayq-bench-scene's rays against 1,024 float spheres); -ffp-contract=off restores equality, and
+// every record's bound holds either way (it is certified from the record's own t: complete()).
 // Brute force over all primitives: for large scenes use a BVH (adapters/embree).
 #pragma once
 
@@ -273,9 +278,16 @@ RAYQ_INLINE std::optional<SceneRef<typename Scene<Prims...>::scalar_type>> neare
     return SceneRef<T>{best->t, best_type, best_index, best->part, best->entering};
 }
 
-// The hit record of a nearest() answer for the same ray and scene: the scalar intersect() of that
-// primitive, with the fields asked for. Without bounds the record is built from the crossing the
-// search already found; the bounds also need the crossings before it, so they come from intersect().
+// The hit record of a nearest() answer for the same ray and scene, with the fields asked for: the
+// scalar intersect() of that primitive, built from the crossing the search found. The bounds also
+// need the crossings before it (one that may exactly lie in the window widens the bound back to
+// tmin, as in intersect()), and, under `accurate`, whether t is the exact root correctly rounded:
+// both come from that primitive's crossings computed again here. Again, not assumed equal: where the
+// compiler contracts a·b + c into one fused multiply-add differently in the two places (GCC's
+// default -ffp-contract=fast on FMA targets), a `fast` or `stable` crossing can differ by many ulps
+// near tangency, and calling intersect() had then found no hit at all for 5% of the rays of
+// rayq-bench-scene's 1,024 float spheres (-march=native), a std::bad_optional_access. A crossing
+// found here before the reported one, in the window or possibly in it, widens the bound to tmin.
 template <class Policy, class... Prims, std::enable_if_t<is_policy_v<Policy>, int> = 0>
 inline SceneHit<typename Scene<Prims...>::scalar_type> complete(Policy policy,
                                                                 const Ray<typename Scene<Prims...>::scalar_type>& ray,
@@ -288,11 +300,24 @@ inline SceneHit<typename Scene<Prims...>::scalar_type> complete(Policy policy,
     detail::visit_stores(scene.stores(), [&](const auto& store, int type) {
         if (type != ref.type) return false;
         const auto& prim = store.items.at(ref.index);
-        if (wants(fields, HitFields::bounds)) hit = intersect(policy, ray, prim, fields);
-        else hit = detail::make_hit(policy, ray, prim, Crossing<T>{ref.t, ref.part, ref.entering}, fields);
+        Crossing<T> c{ref.t, ref.part, ref.entering};
+        if (!wants(fields, HitFields::bounds)) {
+            hit = detail::make_hit(policy, ray, prim, c, fields);
+            return true;
+        }
+        bool earlier_may_count = false;
+        for (const auto& x : detail::leading_crossings(policy, ray, prim)) {
+            if (x.t == c.t && x.part == c.part && x.entering == c.entering) {
+                c.rounded = x.rounded;
+                break;
+            }
+            if (!(x.t < c.t)) break;  // ascending: none before it
+            earlier_may_count = earlier_may_count || detail::in_window(ray, x.t) || detail::may_enter_window(policy, ray, prim, x);
+        }
+        hit = detail::first_hit(policy, ray, prim, c, earlier_may_count, fields);
         return true;
     });
-    return {hit.value(), ref.type, ref.index};  // value(): a ref that is not this scene's nearest hit
+    return {hit.value(), ref.type, ref.index};  // value(): a ref naming no primitive of this scene
 }
 
 // Forced inline, as nearest() is: with the filtered search inlined, GCC called it out of line and
