@@ -25,7 +25,7 @@
 
 namespace {
 
-constexpr std::size_t kRays = 1024;
+constexpr std::size_t kRays = 16384;
 
 template <class T> constexpr const char* type_name() { return sizeof(T) == 4 ? "float" : "double"; }
 constexpr const char* policy_name(rayq::fast_policy) { return "fast"; }
