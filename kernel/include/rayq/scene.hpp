@@ -278,16 +278,12 @@ RAYQ_INLINE std::optional<SceneRef<typename Scene<Prims...>::scalar_type>> neare
     return SceneRef<T>{best->t, best_type, best_index, best->part, best->entering};
 }
 
-// The hit record of a nearest() answer for the same ray and scene, with the fields asked for: the
-// scalar intersect() of that primitive, built from the crossing the search found. The bounds also
-// need the crossings before it (one that may exactly lie in the window widens the bound back to
-// tmin, as in intersect()), and, under `accurate`, whether t is the exact root correctly rounded:
-// both come from that primitive's crossings computed again here. Again, not assumed equal: where the
-// compiler contracts a·b + c into one fused multiply-add differently in the two places (GCC's
-// default -ffp-contract=fast on FMA targets), a `fast` or `stable` crossing can differ by many ulps
-// near tangency, and calling intersect() had then found no hit at all for 5% of the rays of
-// rayq-bench-scene's 1,024 float spheres (-march=native), a std::bad_optional_access. A crossing
-// found here before the reported one, in the window or possibly in it, widens the bound to tmin.
+// The hit record of a nearest() answer for the same ray and scene, with the fields asked for, built
+// from the crossing the search found. The bounds also need the crossings before it (one that lies or
+// may exactly lie in the window widens the bound back to tmin, as in intersect()) and, under
+// `accurate`, whether t is correctly rounded: both come from that primitive's crossings computed
+// again, which are not assumed to name the same crossing (FP contraction: see the top of this file;
+// calling intersect() here threw std::bad_optional_access where it found no hit).
 template <class Policy, class... Prims, std::enable_if_t<is_policy_v<Policy>, int> = 0>
 inline SceneHit<typename Scene<Prims...>::scalar_type> complete(Policy policy,
                                                                 const Ray<typename Scene<Prims...>::scalar_type>& ray,
