@@ -21,7 +21,12 @@
 
 namespace {
 
-constexpr std::size_t kRays = 4096;
+// 65,536 distinct rays, not 4,096 repeated: the branch predictor learns a few thousand rays'
+// outcomes over the iterations and flatters branchy code (rayq-bench-embree, session 33). Measured
+// here (SSE2 release, double, accurate ÷ fast, medians of 5 interleaved, two runs each, 4,096 ->
+// 65,536): sphere 1.15, 1.26 -> 1.14, 1.17; cylinder 1.12, 1.13 -> 1.00, 1.11; capped cylinder 1.08,
+// 1.17 -> 1.13, 1.21; frustum 1.05, 1.11 -> 1.08, 1.11.
+constexpr std::size_t kRays = 65536;
 constexpr std::uint64_t kSeed = 0x5eed'2a7f'0001ULL;
 
 using rayq::Vec3;
