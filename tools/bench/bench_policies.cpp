@@ -1,7 +1,7 @@
 // rayq-bench: what each precision policy costs. For every primitive × scalar type × policy it
 // times closest-hit intersect() and any-hit occluded() over a fixed array of random rays
 // (kRays of them, fixed seed, exactly half hitting by the double/accurate reference, in random
-// order) against one primitive, so the loop measures the kernel rather than memory traffic.
+// order) against one primitive, read in order (kRays: why that many).
 //
 // Names are query/primitive/type/policy, e.g. intersect/sphere/double/accurate. One iteration
 // is the whole ray array; items_per_second is ray tests per second (ns/test = 1e9 / it), and
@@ -22,10 +22,11 @@
 namespace {
 
 // 65,536 distinct rays, not 4,096 repeated: the branch predictor learns a few thousand rays'
-// outcomes over the iterations and flatters branchy code (rayq-bench-embree, session 33). Measured
-// here (SSE2 release, double, accurate ÷ fast, medians of 5 interleaved, two runs each, 4,096 ->
-// 65,536): sphere 1.15, 1.26 -> 1.14, 1.17; cylinder 1.12, 1.13 -> 1.00, 1.11; capped cylinder 1.08,
-// 1.17 -> 1.13, 1.21; frustum 1.05, 1.11 -> 1.08, 1.11.
+// outcomes over the iterations and flatters branchy code (rayq-bench-embree, session 33). Here it
+// had flattered `accurate` (SSE2 release, accurate ÷ fast, medians of 5 interleaved, three runs,
+// 4,096 / 16,384 / 65,536 rays): double plane 0.96–0.98 / 1.14–1.18 / 1.27–1.29, double sphere
+// 1.02–1.25 / 1.26–1.31 / 1.28–1.31, float plane 0.69–0.71 / 0.79–0.91 / 0.99–1.00; float sphere
+// 1.15 throughout. The array (4 MB of double rays) is read in order, which the prefetcher follows.
 constexpr std::size_t kRays = 65536;
 constexpr std::uint64_t kSeed = 0x5eed'2a7f'0001ULL;
 
