@@ -1,8 +1,8 @@
 // rayq::embree::Scene against rayq's scalar loop over every primitive: for random rays aimed into
-// scenes of 1, 16 and 1,000 spheres and capped cylinders, rays starting inside primitives, grazing
-// rays, and the same scenes moved 10⁴ away, under every policy in float and double, the adapter's
-// closest hit is the loop's (same t bit for bit, same primitive, same record), nearest() gives the
-// same t and primitive, and occluded agrees.
+// scenes of 1, 16 and 1,000 spheres and capped cylinders, rays starting inside primitives or on
+// their surfaces, grazing rays, and the same scenes moved 10⁴ away, under every policy in float
+// and double, the adapter's closest hit is the loop's (same t bit for bit, same primitive, same
+// record), nearest() gives the same t and primitive, and occluded agrees.
 #include <rayq/embree.hpp>
 
 #include <gtest/gtest.h>
@@ -88,9 +88,10 @@ void agreement(Policy policy, const char* policy_name, double far)
         const std::size_t count = n == 1000 ? 150 : 300;
         const std::string what = std::string(policy_name) + (sizeof(T) == 4 ? " float" : " double") + " N=" + std::to_string(n) +
                                  (far != 0 ? " far" : "");
-        Tally aimed, inside, grazing, from_origin;
+        Tally aimed, inside, surface, grazing, from_origin;
         for (const auto& ray : aimed_rays<T>(count, offset, 0xA1 + n)) compare(scene, policy, prims, ray, what + " aimed", aimed);
         for (const auto& ray : inside_rays(prims, count / 3, 0xB2 + n)) compare(scene, policy, prims, ray, what + " inside", inside);
+        for (const auto& ray : surface_rays(prims, count / 3, 0xE5 + n)) compare(scene, policy, prims, ray, what + " from the surface", surface);
         for (const auto& ray : grazing_rays(prims, count, 0xC3 + n)) compare(scene, policy, prims, ray, what + " grazing", grazing);
         if (far != 0) {
             // Far-away scenes seen from the world origin: |origin − primitive| ≈ 1.7·10⁴.
@@ -101,12 +102,13 @@ void agreement(Policy policy, const char* policy_name, double far)
                 compare(scene, policy, prims, ray, what + " from the origin", from_origin);
             }
         }
-        EXPECT_EQ(aimed.mismatches + inside.mismatches + grazing.mismatches + from_origin.mismatches, 0u) << what;
+        EXPECT_EQ(aimed.mismatches + inside.mismatches + surface.mismatches + grazing.mismatches + from_origin.mismatches, 0u) << what;
         // The families must exercise both answers, or the comparison proves little.
         EXPECT_GT(aimed.hits, 0u) << what;
         EXPECT_LT(aimed.hits, aimed.rays) << what;
         EXPECT_EQ(inside.hits, inside.rays) << what << ": a ray from inside a closed primitive always leaves it";
         EXPECT_GT(grazing.hits, 0u) << what;
+        EXPECT_GT(surface.hits, 0u) << what;
     }
 }
 

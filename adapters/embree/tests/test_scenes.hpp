@@ -78,6 +78,26 @@ std::vector<rayq::Ray<rayq::scalar_t<Prim>>> inside_rays(const std::vector<Prim>
     return rays;
 }
 
+// Rays starting on a primitive's surface (where a ray from its centre leaves it, to rounding), in
+// random directions, tmin = 0: the crossing at the origin lies within rounding of tmin, so whether
+// it counts (and whether the hit's bound must reach back to tmin) is the hard part.
+template <class Prim>
+std::vector<rayq::Ray<rayq::scalar_t<Prim>>> surface_rays(const std::vector<Prim>& prims, std::size_t count, std::uint64_t seed)
+{
+    using T = rayq::scalar_t<Prim>;
+    std::mt19937_64 rng(seed);
+    std::normal_distribution<double> g;
+    std::vector<rayq::Ray<T>> rays;
+    for (std::size_t i = 0; i < count; ++i) {
+        const Prim& p = prims[rng() % prims.size()];
+        const rayq::Ray<T> from_centre{narrow<T>(centre_of(p)), narrow<T>(rayq::normalize(rayq::Vec3<double>{g(rng), g(rng), g(rng)}))};
+        const auto leave = rayq::intersect(rayq::accurate, from_centre, p);
+        if (!leave) continue;
+        rays.push_back({leave->point, narrow<T>(rayq::normalize(rayq::Vec3<double>{g(rng), g(rng), g(rng)}))});
+    }
+    return rays;
+}
+
 // Rays tangent (in double, before rounding to T) to a random sphere, or through a random point of
 // a cylinder's rim circle along the cap plane: near-tangent in T, the decisions that are hard.
 template <class Prim>

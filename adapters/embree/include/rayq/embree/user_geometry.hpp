@@ -67,6 +67,10 @@ struct Options {
     RTCBuildQuality build_quality = RTC_BUILD_QUALITY_MEDIUM;
     // Passed to rtcNewDevice by Scene (e.g. "threads=1"); nullptr: Embree's defaults.
     const char* device_config = nullptr;
+    // At most this many rayq primitives per leaf of Scene's BVH (Embree's device option
+    // object_accel_max_leaf_size, whose default is 1); 0: Embree's default. A leaf calls back once
+    // per primitive, so larger leaves trade box tests in Embree's traversal for rayq decisions.
+    unsigned max_leaf_size = 3;
 };
 
 namespace detail {
@@ -129,6 +133,8 @@ struct QueryContext {
     unsigned geomID;
     unsigned primID;
     float tfar_written;        // the tfar last written into Embree's ray by a rayq callback
+    Crossing<T> crossing{};    // the best hit's crossing, as rayq's leading_crossings() gave it
+    bool crossing_is_first = false;  // no crossing before it: its record needs no second look
 
     explicit QueryContext(const Ray<T>& query)
         : ray(query), window_end(query.tmax), t(query.tmax), geomID(RTC_INVALID_GEOMETRY_ID), primID(RTC_INVALID_GEOMETRY_ID),
@@ -199,11 +205,7 @@ public:
         : primitives_(std::move(primitives)), policy_(policy)
     {
         boxes_.reserve(primitives_.size());
-        valid_.reserve(primitives_.size());
-        for (const Prim& p : primitives_) {
-            boxes_.push_back(embree_bounds<Policy>(p, options.origin_bound));
-            valid_.push_back(static_cast<bool>(validate(p)));
-        }
+        for (const Prim& p : primitives_) boxes_.push_back(embree_bounds<Policy>(p, options.origin_bound));
         geometry_ = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
         if (!geometry_) throw std::runtime_error("rayq::embree: rtcNewGeometry(RTC_GEOMETRY_TYPE_USER) failed");
         rtcSetGeometryUserPrimitiveCount(geometry_, static_cast<unsigned>(primitives_.size()));
@@ -232,13 +234,30 @@ public:
         return ::rayq::intersect(policy_, ray, primitives_.at(primID), fields);
     }
 
-private:
-    // The first crossing of primitive i inside window's (tmin, tmax): rayq's cheap core, no record.
-    std::optional<Crossing<T>> first_crossing(const Ray<T>& window, unsigned i) const
+    // The same record for a closest hit a QueryContext on `ray` found in this geometry, from the
+    // crossing the callback kept, without computing the primitive's crossings again when none came
+    // before it (then intersect() would build it from that crossing too: first_hit with no earlier
+    // crossing to cover); otherwise hit_record().
+    std::optional<Hit<T>> hit_record(const Ray<T>& ray, const QueryContext<T>& found, HitFields fields = HitFields::all) const
     {
-        for (const Crossing<T>& c : crossings(policy_, window, primitives_[i]))
-            if (window.tmin < c.t && c.t < window.tmax) return c;
-        return std::nullopt;
+        if (!found.crossing_is_first || found.geomID != geomID_) return hit_record(ray, found.primID, fields);
+        return ::rayq::detail::first_hit(policy_, ray, primitives_.at(found.primID), found.crossing, false, fields);
+    }
+
+private:
+    // The first crossing of primitive i inside window's (tmin, tmax) and whether no crossing
+    // precedes it: the scalar intersect()'s own core (leading_crossings: under `accurate` only
+    // the first root in the window is rounded), no record.
+    struct FirstCrossing {
+        Crossing<T> crossing;
+        bool is_first;
+    };
+    std::optional<FirstCrossing> first_crossing(const Ray<T>& window, unsigned i) const
+    {
+        const auto cs = ::rayq::detail::leading_crossings(policy_, window, primitives_[i]);
+        const Crossing<T>* c = ::rayq::detail::first_in_window(window, cs);
+        if (!c) return std::nullopt;
+        return FirstCrossing{*c, c == cs.begin()};
     }
 
     static void bounds_callback(const RTCBoundsFunctionArguments* args)
@@ -264,8 +283,7 @@ private:
     static void intersect_callback(const RTCIntersectFunctionNArguments* args)
     {
         const auto* self = static_cast<const UserGeometry*>(args->geometryUserPtr);
-        const unsigned prim = args->primID;
-        if (!self->valid_[prim]) return;
+        const unsigned prim = args->primID;  // a valid primitive: invalid ones have inverted boxes, which Embree drops
         [[maybe_unused]] detail::IeeeArithmetic ieee;  // FTZ/DAZ off while rayq decides
         if (QueryContext<T>* ctx = args->N == 1 ? QueryContext<T>::from(args->context) : nullptr) {
             if (!args->valid[0]) return;
@@ -274,8 +292,9 @@ private:
             window.tmax = ctx->window_end;
             // Another geometry (Embree native) lowered tfar below what we wrote: its hit is nearer.
             if (rh->ray.tfar != ctx->tfar_written && T(rh->ray.tfar) < window.tmax) window.tmax = T(rh->ray.tfar);
-            const std::optional<Crossing<T>> c = self->first_crossing(window, prim);
-            if (!c) return;
+            const std::optional<FirstCrossing> found = self->first_crossing(window, prim);
+            if (!found) return;
+            const Crossing<T>* c = &found->crossing;
             // Equal t: the lower (geomID, primID) wins, as the scalar loop's first index does.
             if (ctx->found() && !(c->t < ctx->t || (c->t == ctx->t && std::make_pair(args->geomID, prim) <
                                                                           std::make_pair(ctx->geomID, ctx->primID))))
@@ -283,6 +302,8 @@ private:
             ctx->t = c->t;
             ctx->geomID = args->geomID;
             ctx->primID = prim;
+            ctx->crossing = *c;
+            ctx->crossing_is_first = found->is_first;
             ctx->window_end = rayq::detail::next_up(c->t);  // ties stay in the window (rayq::Scene does the same)
             ctx->tfar_written = detail::to_tfar(c->t);
             rh->ray.tfar = ctx->tfar_written;
@@ -301,10 +322,10 @@ private:
             if (!args->valid[i]) continue;
             const Ray<T> ray = ray_from_lane(rays, args->N, i);
             if (!usable(ray)) continue;
-            const std::optional<Crossing<T>> c = self->first_crossing(ray, prim);
-            if (!c) continue;
-            RTCRayN_tfar(rays, args->N, i) = detail::to_tfar(c->t);
-            const Vec3<float> n = self->outward_normal_at(ray, prim, *c);
+            const std::optional<FirstCrossing> found = self->first_crossing(ray, prim);
+            if (!found) continue;
+            RTCRayN_tfar(rays, args->N, i) = detail::to_tfar(found->crossing.t);
+            const Vec3<float> n = self->outward_normal_at(ray, prim, found->crossing);
             RTCHitN_Ng_x(hits, args->N, i) = n.x, RTCHitN_Ng_y(hits, args->N, i) = n.y, RTCHitN_Ng_z(hits, args->N, i) = n.z;
             RTCHitN_u(hits, args->N, i) = 0, RTCHitN_v(hits, args->N, i) = 0;
             RTCHitN_primID(hits, args->N, i) = prim;
@@ -316,8 +337,7 @@ private:
     static void occluded_callback(const RTCOccludedFunctionNArguments* args)
     {
         const auto* self = static_cast<const UserGeometry*>(args->geometryUserPtr);
-        const unsigned prim = args->primID;
-        if (!self->valid_[prim]) return;
+        const unsigned prim = args->primID;  // valid, as in intersect_callback
         [[maybe_unused]] detail::IeeeArithmetic ieee;  // FTZ/DAZ off while rayq decides
         if (QueryContext<T>* ctx = args->N == 1 ? QueryContext<T>::from(args->context) : nullptr) {
             if (!args->valid[0] || !self->first_crossing(ctx->ray, prim)) return;
@@ -336,7 +356,6 @@ private:
 
     std::vector<Prim> primitives_;
     std::vector<RTCBounds> boxes_;
-    std::vector<unsigned char> valid_;
     Policy policy_;
     RTCGeometry geometry_ = nullptr;
     unsigned geomID_ = RTC_INVALID_GEOMETRY_ID;
@@ -368,7 +387,10 @@ public:
 
     explicit Scene(std::vector<Prim> primitives, Policy policy = {}, const Options& options = {})
     {
-        device_ = rtcNewDevice(options.device_config);
+        std::string config = options.device_config ? options.device_config : "";
+        if (options.max_leaf_size > 0)
+            config = "object_accel_max_leaf_size=" + std::to_string(options.max_leaf_size) + (config.empty() ? "" : "," + config);
+        device_ = rtcNewDevice(config.empty() ? nullptr : config.c_str());
         if (!device_) throw std::runtime_error("rayq::embree: rtcNewDevice failed (error " + std::to_string(rtcGetDeviceError(nullptr)) + ")");
         const auto start = std::chrono::steady_clock::now();
         scene_ = rtcNewScene(device_);
@@ -392,22 +414,27 @@ public:
     // by that loop itself: correct, without culling.
     std::optional<EmbreeHit<T>> intersect(const Ray<T>& ray, HitFields fields = HitFields::all) const
     {
-        const std::optional<EmbreeRef<T>> ref = nearest(ray);
-        if (!ref) return std::nullopt;
-        const std::optional<Hit<T>> hit = geometry_->hit_record(ray, ref->primID, fields);
+        if (!usable(ray)) return std::nullopt;
+        QueryContext<T> ctx(ray);
+        std::optional<RTCRayHit> rh = ctx.embree_ray();
+        if (!rh) return brute_force(ray, fields);
+        rtcIntersect1(scene_, ctx.context(), &*rh);
+        if (!ctx.found()) return std::nullopt;
+        // From the crossing the callback kept (the record is built once, for the winner).
+        const std::optional<Hit<T>> hit = geometry_->hit_record(ray, ctx, fields);
         if (!hit) return std::nullopt;  // unreachable: the winner's first crossing is in the window
-        return EmbreeHit<T>{*hit, ref->geomID, ref->primID, ref->tfar};
+        return EmbreeHit<T>{*hit, ctx.geomID, ctx.primID, rh->ray.tfar};
     }
 
     // The closest hit without rayq's hit record (no normal, no certified bound): t and which
-    // primitive, like rayq::nearest for rayq::Scene. intersect() is this plus hit_record().
+    // primitive, like rayq::nearest for rayq::Scene.
     std::optional<EmbreeRef<T>> nearest(const Ray<T>& ray) const
     {
         if (!usable(ray)) return std::nullopt;
         QueryContext<T> ctx(ray);
         std::optional<RTCRayHit> rh = ctx.embree_ray();
         if (!rh) {
-            const std::optional<EmbreeHit<T>> h = brute_force(ray);
+            const std::optional<EmbreeHit<T>> h = brute_force(ray, HitFields::t);
             if (!h) return std::nullopt;
             return EmbreeRef<T>{h->hit.t, h->geomID, h->primID, h->tfar};
         }
@@ -436,12 +463,12 @@ public:
     const UserGeometry<Prim, Policy>& geometry() const { return *geometry_; }
 
 private:
-    std::optional<EmbreeHit<T>> brute_force(const Ray<T>& ray) const
+    std::optional<EmbreeHit<T>> brute_force(const Ray<T>& ray, HitFields fields) const
     {
         std::optional<EmbreeHit<T>> best;
         const auto& prims = geometry_->primitives();
         for (std::size_t i = 0; i < prims.size(); ++i)
-            if (auto h = ::rayq::intersect(geometry_->policy(), ray, prims[i]); h && (!best || h->t < best->hit.t))
+            if (auto h = ::rayq::intersect(geometry_->policy(), ray, prims[i], fields); h && (!best || h->t < best->hit.t))
                 best = EmbreeHit<T>{*h, 0u, static_cast<unsigned>(i), detail::to_tfar(h->t)};
         return best;
     }
