@@ -94,6 +94,13 @@ template <class T> RAYQ_INLINE Bounded<T> operator*(Bounded<T> a, Bounded<T> b)
 template <class T> RAYQ_INLINE Bounded<T>& operator+=(Bounded<T>& a, Bounded<T> b) { return a = a + b; }
 
 // Bounds of |x| over the values x may take (|v| + e rounds only when e is not zero).
+// The sign of an exact value known to lie within `slack` of v: ±1 when v clears the slack, else 0
+// (also for NaN). Without branches: where the sign is a coin flip (a plane's f and df on random
+// rays), nested conditionals became two branches that mispredicted (perf: 14% of an accurate
+// double plane's hit samples; per ray, -O3 SSE2, min of 15 runs over 32,768: hits 93 -> 82 ns,
+// misses 37 -> 28, fast's 63 and 37).
+template <class T> RAYQ_INLINE int sign_beyond(T v, T slack) { return int(v > slack) - int(-v > slack); }
+
 template <class T> RAYQ_INLINE T upper(T v, T e) { return e == T(0) ? std::abs(v) : grow(std::abs(v) + e); }
 template <class T> RAYQ_INLINE T upper(Bounded<T> a) { return upper(a.v, a.e); }
 // (|v| − e) rounded toward zero: one rounding of relative size <= u, removed by (1 − 2u).

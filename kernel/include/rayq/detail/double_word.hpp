@@ -146,7 +146,7 @@ inline int certain_sign(const DoubleWord<T>& x)
 {
     const T v = x.hi + x.lo;  // |v − (hi + lo)| <= u·|v|
     const T slack = grow(x.e + unit_roundoff<T> * std::abs(v));
-    return v > slack ? 1 : (-v > slack ? -1 : 0);
+    return sign_beyond(v, slack);
 }
 
 // The accurate policy's second filter precision. Double-word T in general; for float, hardware
@@ -197,7 +197,7 @@ RAYQ_INLINE Estimate<float> estimate(const Bounded<double>& x)
 template <class T>
 RAYQ_INLINE int certain_sign(const Bounded<T>& x)
 {
-    return x.v > x.e ? 1 : (-x.v > x.e ? -1 : 0);
+    return sign_beyond(x.v, x.e);
 }
 
 }  // namespace rayq::detail

@@ -860,7 +860,7 @@ RAYQ_INLINE int sign_over_span(const Residual<Magnitude<T>>& r, T h)
     const T slope = grow(std::abs(r.df.v()) + r.df.bound());
     const T drift = r.a.m() == T(0) ? slope : grow(slope + grow(grow(std::abs(r.a.v()) + r.a.bound()) * h));
     const T reach = grow(r.f.bound() + grow(drift * h));
-    return r.f.v() > reach ? 1 : (-r.f.v() > reach ? -1 : 0);
+    return sign_beyond(r.f.v(), reach);
 }
 // How far the root of a linear residual G = f + df·t (a plane along the ray, from the static
 // filter) can lie from t: |G(t)|/|df|, |G(t)| at most the computed |f + df·t| (two roundings of

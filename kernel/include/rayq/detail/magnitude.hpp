@@ -106,15 +106,7 @@ template <class W> RAYQ_INLINE Bounded<W> bounded(const Bounded<W>& x) { return 
 template <class W> RAYQ_INLINE W value_of(const Magnitude<W>& x) { return x.v(); }
 template <class W> RAYQ_INLINE W value_of(const Bounded<W>& x) { return x.v; }
 
-// Sign of the exact value when the bound decides it, else 0. Without branches: the signs of a
-// plane's f and df are coin flips on random rays, and as nested conditionals GCC made two branches
-// that mispredicted (perf: 14% of an accurate double plane's hit samples on this line; per ray,
-// -O3 SSE2, min of 15 runs over 32,768: hits 93 -> 82 ns, misses 37 -> 28, fast's 63 and 37).
-template <class W> RAYQ_INLINE int certain_sign(const Magnitude<W>& x)
-{
-    const W e = x.bound();
-    const W v = x.v();
-    return int(v > e) - int(-v > e);
-}
+// Sign of the exact value when the bound decides it, else 0.
+template <class W> RAYQ_INLINE int certain_sign(const Magnitude<W>& x) { return sign_beyond(x.v(), x.bound()); }
 
 }  // namespace rayq::detail
