@@ -125,6 +125,11 @@ TEST(EmbreeApi, UserGeometryInAnEmbreeSceneWithNativeGeometry)
         EXPECT_EQ(ctx.t, 9.0);
         EXPECT_LT(rh.hit.Ng_z, 0.0f);  // outward normal at the sphere's bottom
         EXPECT_EQ(balls.hit_record(ray, rh.hit.primID)->t, 9.0);
+        const auto kept = balls.hit_record(ctx);  // from the crossing the callback kept: the same record
+        ASSERT_TRUE(kept.has_value());
+        EXPECT_EQ(kept->t, 9.0);
+        EXPECT_EQ(kept->t_error, balls.hit_record(ray, rh.hit.primID)->t_error);
+        EXPECT_EQ(kept->normal.z, balls.hit_record(ray, rh.hit.primID)->normal.z);
     }
     {   // From z = 12 upwards: the triangle (t = 3) is nearer than the sphere at 20 (t = 7).
         const Ray<double> ray{{0, 0, 12}, {0, 0, 1}};
@@ -132,6 +137,17 @@ TEST(EmbreeApi, UserGeometryInAnEmbreeSceneWithNativeGeometry)
         const RTCRayHit rh = trace(ctx);
         EXPECT_EQ(rh.hit.geomID, tri_id);
         EXPECT_EQ(rh.ray.tfar, 3.0f);
+        // The context may still hold the sphere's farther hit (t = 7) if Embree met it first.
+        if (ctx.found()) {
+            EXPECT_EQ(ctx.t, 7.0);
+        }
+    }
+    {   // A miss: no record from the context.
+        const Ray<double> ray{{0, 0, 0}, {0, 0, -1}};
+        rayq::embree::QueryContext<double> ctx(ray);
+        const RTCRayHit rh = trace(ctx);
+        EXPECT_EQ(rh.hit.geomID, RTC_INVALID_GEOMETRY_ID);
+        EXPECT_FALSE(balls.hit_record(ctx).has_value());
     }
     {   // A plain context (no QueryContext): Embree's float ray decides, the hit fields are Embree's.
         RTCIntersectContext plain;

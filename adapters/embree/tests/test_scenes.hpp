@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <random>
 #include <vector>
 
@@ -78,22 +79,21 @@ std::vector<rayq::Ray<rayq::scalar_t<Prim>>> inside_rays(const std::vector<Prim>
     return rays;
 }
 
-// Rays starting on a primitive's surface (where a ray from its centre leaves it, to rounding), in
-// random directions, tmin = 0: the crossing at the origin lies within rounding of tmin, so whether
-// it counts (and whether the hit's bound must reach back to tmin) is the hard part.
+// Rays starting on a primitive's surface (where a ray from a centre first meets one, to
+// rounding), in random directions, tmin = 0: the crossing at the origin lies within rounding of
+// tmin, so whether it counts (and whether the hit's bound must reach back to tmin) is the hard part.
 template <class Prim>
 std::vector<rayq::Ray<rayq::scalar_t<Prim>>> surface_rays(const std::vector<Prim>& prims, std::size_t count, std::uint64_t seed)
 {
     using T = rayq::scalar_t<Prim>;
-    std::mt19937_64 rng(seed);
-    std::normal_distribution<double> g;
+    // The second family's directions serve as the new random directions.
+    const auto from_centre = inside_rays(prims, count, seed), turned = inside_rays(prims, count, seed + 1);
     std::vector<rayq::Ray<T>> rays;
-    for (std::size_t i = 0; i < count; ++i) {
-        const Prim& p = prims[rng() % prims.size()];
-        const rayq::Ray<T> from_centre{narrow<T>(centre_of(p)), narrow<T>(rayq::normalize(rayq::Vec3<double>{g(rng), g(rng), g(rng)}))};
-        const auto leave = rayq::intersect(rayq::accurate, from_centre, p);
-        if (!leave) continue;
-        rays.push_back({leave->point, narrow<T>(rayq::normalize(rayq::Vec3<double>{g(rng), g(rng), g(rng)}))});
+    for (std::size_t k = 0; k < from_centre.size(); ++k) {
+        std::optional<rayq::Hit<T>> first;
+        for (const Prim& p : prims)
+            if (const auto h = rayq::intersect(rayq::accurate, from_centre[k], p); h && (!first || h->t < first->t)) first = h;
+        if (first) rays.push_back({first->point, turned[k].direction});
     }
     return rays;
 }

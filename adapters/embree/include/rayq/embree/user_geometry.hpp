@@ -12,7 +12,8 @@
 //     rayq::embree::QueryContext<double> ctx(ray);       // the query in the primitives' precision
 //     RTCRayHit rh = ctx.embree_ray();
 //     rtcIntersect1(my_scene, ctx.context(), &rh);
-//     if (rh.hit.geomID == id) auto hit = cans.hit_record(ray, rh.hit.primID);   // == ctx.primID
+//     if (rh.hit.geomID == id) auto hit = cans.hit_record(ctx);  // from the crossing the callback kept
+//     (or cans.hit_record(ray, rh.hit.primID): the same record, computed again)
 //
 // Answers: with a QueryContext, the closest hit is exactly what rayq's scalar loop over every
 // primitive gives — the same t bit for bit (kept in T: Embree's tfar is float, rounded up for
@@ -234,14 +235,17 @@ public:
         return ::rayq::intersect(policy_, ray, primitives_.at(primID), fields);
     }
 
-    // The same record for a closest hit a QueryContext on `ray` found in this geometry, from the
-    // crossing the callback kept, without computing the primitive's crossings again when none came
-    // before it (then intersect() would build it from that crossing too: first_hit with no earlier
-    // crossing to cover); otherwise hit_record().
-    std::optional<Hit<T>> hit_record(const Ray<T>& ray, const QueryContext<T>& found, HitFields fields = HitFields::all) const
+    // The same record for the closest hit of a query traced with `found`, when that hit is this
+    // geometry's (with other geometry in the scene, check Embree's rh.hit.geomID first: a native
+    // hit nearer than rayq's leaves the context as it was); nullopt when the context holds none of
+    // this geometry's. Built from the crossing the callback kept, without computing the
+    // primitive's crossings again when none came before it (the scalar intersect() then builds it
+    // from that crossing too: first_hit with no earlier crossing to cover); otherwise as above.
+    std::optional<Hit<T>> hit_record(const QueryContext<T>& found, HitFields fields = HitFields::all) const
     {
-        if (!found.crossing_is_first || found.geomID != geomID_) return hit_record(ray, found.primID, fields);
-        return ::rayq::detail::first_hit(policy_, ray, primitives_.at(found.primID), found.crossing, false, fields);
+        if (!found.found() || found.geomID != geomID_) return std::nullopt;
+        if (!found.crossing_is_first) return hit_record(found.ray, found.primID, fields);
+        return ::rayq::detail::first_hit(policy_, found.ray, primitives_.at(found.primID), found.crossing, false, fields);
     }
 
 private:
@@ -421,7 +425,7 @@ public:
         rtcIntersect1(scene_, ctx.context(), &*rh);
         if (!ctx.found()) return std::nullopt;
         // From the crossing the callback kept (the record is built once, for the winner).
-        const std::optional<Hit<T>> hit = geometry_->hit_record(ray, ctx, fields);
+        const std::optional<Hit<T>> hit = geometry_->hit_record(ctx, fields);
         if (!hit) return std::nullopt;  // unreachable: the winner's first crossing is in the window
         return EmbreeHit<T>{*hit, ctx.geomID, ctx.primID, rh->ray.tfar};
     }
