@@ -420,14 +420,13 @@ public:
     {
         if (!usable(ray)) return std::nullopt;
         QueryContext<T> ctx(ray);
-        std::optional<RTCRayHit> rh = ctx.embree_ray();
-        if (!rh) return brute_force(ray, fields);
-        rtcIntersect1(scene_, ctx.context(), &*rh);
+        const std::optional<float> tfar = trace(ctx);
+        if (!tfar) return brute_force(ray, fields);
         if (!ctx.found()) return std::nullopt;
         // From the crossing the callback kept (the record is built once, for the winner).
         const std::optional<Hit<T>> hit = geometry_->hit_record(ctx, fields);
         if (!hit) return std::nullopt;  // unreachable: the winner's first crossing is in the window
-        return EmbreeHit<T>{*hit, ctx.geomID, ctx.primID, rh->ray.tfar};
+        return EmbreeHit<T>{*hit, ctx.geomID, ctx.primID, *tfar};
     }
 
     // The closest hit without rayq's hit record (no normal, no certified bound): t and which
@@ -436,15 +435,14 @@ public:
     {
         if (!usable(ray)) return std::nullopt;
         QueryContext<T> ctx(ray);
-        std::optional<RTCRayHit> rh = ctx.embree_ray();
-        if (!rh) {
-            const std::optional<EmbreeHit<T>> h = brute_force(ray, HitFields::t);
+        const std::optional<float> tfar = trace(ctx);
+        if (!tfar) {
+            const std::optional<EmbreeHit<T>> h = brute_force(ray, HitFields::all);  // the t intersect() gives
             if (!h) return std::nullopt;
             return EmbreeRef<T>{h->hit.t, h->geomID, h->primID, h->tfar};
         }
-        rtcIntersect1(scene_, ctx.context(), &*rh);
         if (!ctx.found()) return std::nullopt;
-        return EmbreeRef<T>{ctx.t, ctx.geomID, ctx.primID, rh->ray.tfar};
+        return EmbreeRef<T>{ctx.t, ctx.geomID, ctx.primID, *tfar};
     }
 
     bool occluded(const Ray<T>& ray) const
@@ -467,6 +465,16 @@ public:
     const UserGeometry<Prim, Policy>& geometry() const { return *geometry_; }
 
 private:
+    // Traces ctx's query through Embree (the callbacks fill ctx): Embree's final tfar, or nullopt
+    // for a ray Embree cannot take (QueryContext::embree_ray).
+    std::optional<float> trace(QueryContext<T>& ctx) const
+    {
+        std::optional<RTCRayHit> rh = ctx.embree_ray();
+        if (!rh) return std::nullopt;
+        rtcIntersect1(scene_, ctx.context(), &*rh);
+        return rh->ray.tfar;
+    }
+
     std::optional<EmbreeHit<T>> brute_force(const Ray<T>& ray, HitFields fields) const
     {
         std::optional<EmbreeHit<T>> best;
