@@ -84,6 +84,7 @@ void agreement(Policy policy, const char* policy_name, double far)
         const std::vector<Prim> prims = random_primitives<Prim>(n, offset, 0xE3B0 + n);
         rayq::embree::Options options;
         options.device_config = "threads=1";
+        options.max_leaf_size = n == 1000 ? 3 : 0;  // leaves of several primitives (automatic: 1 at this size)
         const rayq::embree::Scene<Prim, Policy> scene(prims, policy, options);
         const std::size_t count = n == 1000 ? 150 : 300;
         const std::string what = std::string(policy_name) + (sizeof(T) == 4 ? " float" : " double") + " N=" + std::to_string(n) +
