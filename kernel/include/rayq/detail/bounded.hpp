@@ -93,7 +93,6 @@ template <class T> RAYQ_INLINE Bounded<T> operator*(Bounded<T> a, Bounded<T> b)
 }
 template <class T> RAYQ_INLINE Bounded<T>& operator+=(Bounded<T>& a, Bounded<T> b) { return a = a + b; }
 
-// Bounds of |x| over the values x may take (|v| + e rounds only when e is not zero).
 // The sign of an exact value known to lie within `slack` of v: ±1 when v clears the slack, else 0
 // (also for NaN). Without branches: where the sign is a coin flip (a plane's f and df on random
 // rays), nested conditionals became two branches that mispredicted (perf: 14% of an accurate
@@ -101,6 +100,7 @@ template <class T> RAYQ_INLINE Bounded<T>& operator+=(Bounded<T>& a, Bounded<T> 
 // misses 37 -> 28, fast's 63 and 37).
 template <class T> RAYQ_INLINE int sign_beyond(T v, T slack) { return int(v > slack) - int(-v > slack); }
 
+// Bounds of |x| over the values x may take (|v| + e rounds only when e is not zero).
 template <class T> RAYQ_INLINE T upper(T v, T e) { return e == T(0) ? std::abs(v) : grow(std::abs(v) + e); }
 template <class T> RAYQ_INLINE T upper(Bounded<T> a) { return upper(a.v, a.e); }
 // (|v| − e) rounded toward zero: one rounding of relative size <= u, removed by (1 − 2u).
