@@ -225,7 +225,7 @@ TYPED_TEST(BatchTest, FilterNeverDropsAHit)
             using Policy = std::decay_t<decltype(TypeParam::policy)>;
             if constexpr (!batch::bound_filter_exact_v<Policy, Prim>) return;
             SCOPED_TRACE(typeid(Prim).name());
-            std::size_t kept = 0, lanes = 0, hits = 0, skipped_groups = 0;
+            std::size_t kept = 0, lanes = 0, hits = 0, skipped_groups = 0, passed_lanes = 0;
             for (int scene = 0; scene < 24; ++scene) {
                 // Far from the origin at times: the hit point's rounding grows with |o| and |c|.
                 const V offset = scene % 3 == 0 ? g.unit() * g.log_uniform(1e2, 1e5) : V{0, 0, 0};
@@ -259,9 +259,13 @@ TYPED_TEST(BatchTest, FilterNeverDropsAHit)
                             ++lanes;
                             const bool hit = occluded(TypeParam::policy, ray, prims[i]);
                             hits += hit;
+                            // The one-lane line test of scenes of one or two primitives (SceneStore::scan).
+                            const bool passed = batch::line_passes_bound<batch::bound_test_v<Policy, Prim>>(f, soa, i);
+                            passed_lanes += passed;
                             if (hit) {
                                 EXPECT_TRUE(m >> lane & 1u) << "dropped primitive " << i << " that the policy hits";
                                 EXPECT_FALSE(skipped) << "the line test skipped the group of primitive " << i << ", which the policy hits";
+                                EXPECT_FALSE(passed) << "the one-lane line test passed primitive " << i << ", which the policy hits";
                             }
                         }
                     }
@@ -272,6 +276,9 @@ TYPED_TEST(BatchTest, FilterNeverDropsAHit)
             // Skipping is exercised only where a group can be passed whole (narrow SIMD lanes).
             if (batch::bound_test_v<Policy, Prim> != batch::BoundTest::line && batch::BoundSoA<T>::width <= 4) {
                 EXPECT_GT(skipped_groups, 0u);
+            }
+            if (batch::bound_test_v<Policy, Prim> != batch::BoundTest::line) {
+                EXPECT_GT(passed_lanes, lanes / 2);
             }
         },
         static_cast<Bounded<T>*>(nullptr));
@@ -376,6 +383,7 @@ TYPED_TEST(BatchTest, FilterKeepsCylinderHitsAlongTheAxis)
             const batch::BoundFilterRay<T> f(ray);
             EXPECT_TRUE((scene_candidates<Policy, Cylinder<T>>(f, ray, soa, 0) & 1u)) << "scene filter dropped a hit";
             EXPECT_FALSE((scene_skips_group<Policy, Cylinder<T>>(ray, soa, 0))) << "scene's line test skipped a hit";
+            EXPECT_FALSE((batch::line_passes_bound<batch::bound_test_v<Policy, Cylinder<T>>>(f, soa, 0))) << "the one-lane line test passed a hit";
             batch::RayStream<T> stream;
             stream.push_back(ray);
             EXPECT_TRUE((stream_candidates<Policy, Cylinder<T>>(stream, 0, b) & 1u)) << "stream filter dropped a hit";
@@ -493,7 +501,7 @@ TYPED_TEST(BatchTest, LaneColumnsStartOnACacheLine)
         for (const auto* c : {&spheres.cx, &spheres.cy, &spheres.cz, &spheres.r, &spheres.reach2}) EXPECT_TRUE(aligned(*c));
         for (const auto* c : {&bounds.cx, &bounds.cy, &bounds.cz, &bounds.reach, &bounds.far, &bounds.wx, &bounds.wy, &bounds.wz})
             EXPECT_TRUE(aligned(*c));
-        for (const auto* c : {&rays.ox, &rays.oy, &rays.oz, &rays.dx, &rays.dy, &rays.dz, &rays.abs_slack, &rays.tmin, &rays.tmax})
+        for (const auto* c : {&rays.ox, &rays.oy, &rays.oz, &rays.dx, &rays.dy, &rays.dz, &rays.dd, &rays.inv_len, &rays.abs_slack, &rays.tmin, &rays.tmax})
             EXPECT_TRUE(aligned(*c));
     }
 }

@@ -237,20 +237,33 @@ RAYQ_INLINE std::uint32_t bound_candidates(const BoundFilterRay<T>& f, T tmin, T
     using L = rayq::detail::Lanes<T>;
     using P = typename L::pack;
     const std::size_t i = g * L::width;
-    const P dx(f.unit_dir.x), dy(f.unit_dir.y), dz(f.unit_dir.z);
+    const DirectionPacks<P> d{P(f.direction.x), P(f.direction.y), P(f.direction.z), P(f.dd), P(f.inv_len)};
     PlanePacks<P> plane;
     const bool planar = Test == BoundTest::line && s.planar;
     if (planar) plane = {L::load(&s.wx[i]), L::load(&s.wy[i]), L::load(&s.wz[i])};
-    const WindowPacks<P> window{P(tmin), P(tmax), P(f.inv_len), P(f.t_slack_abs)};
+    const WindowPacks<P> window{P(tmin), P(tmax), P(f.t_slack_abs)};
     const auto keep = bound_keep<T, Test>(P(f.origin.x) - L::load(&s.cx[i]), P(f.origin.y) - L::load(&s.cy[i]),
-                                          P(f.origin.z) - L::load(&s.cz[i]), dx, dy, dz, L::load(&s.reach[i]), L::load(&s.far[i]),
+                                          P(f.origin.z) - L::load(&s.cz[i]), d, L::load(&s.reach[i]), L::load(&s.far[i]),
                                           P(f.abs_slack), planar ? &plane : nullptr, &window);
     return L::bits(keep) & s.live(g);
 }
 
-// Whether the ray's line certainly passes every primitive of group g, by the window tests' line
-// test alone (what a scan skips groups by; bound_candidates then gives them no lane). Never for
-// Test = line, whose plane test may keep a lane the line test drops.
+// Whether the ray's line certainly passes the bounds from index i on, by the window tests' line
+// test alone: as packs P (loaded by `load`) or as one T. Never for Test = line, whose plane test
+// may keep a lane the line test drops.
+template <BoundTest Test, class P, class T, class Load>
+RAYQ_INLINE auto line_passes_bounds(const BoundFilterRay<T>& f, const BoundSoA<T>& s, std::size_t i, Load load)
+{
+    static_assert(Test != BoundTest::line, "the line test alone decides nothing for Test = line");
+    const P dd(f.dd);
+    const DirectionPacks<P> d{P(f.direction.x), P(f.direction.y), P(f.direction.z), dd, P(f.inv_len)};  // 1/|d|: unused here
+    const LineTerms<P> line = line_terms(P(f.origin.x) - load(&s.cx[i]), P(f.origin.y) - load(&s.cy[i]), P(f.origin.z) - load(&s.cz[i]), d,
+                                         load(&s.reach[i]));
+    return passes_line<T, Test>(line, dd, P(f.abs_slack)) && line.uu < load(&s.far[i]);
+}
+
+// Whether the ray's line certainly passes every primitive of group g (what a scan skips groups
+// by; bound_candidates then gives them no lane). Always false for Test = line.
 template <BoundTest Test, class T>
 RAYQ_INLINE bool line_passes_group(const BoundFilterRay<T>& f, const BoundSoA<T>& s, std::size_t g)
 {
@@ -258,12 +271,18 @@ RAYQ_INLINE bool line_passes_group(const BoundFilterRay<T>& f, const BoundSoA<T>
         return false;
     } else {
         using L = rayq::detail::Lanes<T>;
-        using P = typename L::pack;
-        const std::size_t i = g * L::width;
-        const auto line = line_terms(P(f.origin.x) - L::load(&s.cx[i]), P(f.origin.y) - L::load(&s.cy[i]), P(f.origin.z) - L::load(&s.cz[i]),
-                                     P(f.unit_dir.x), P(f.unit_dir.y), P(f.unit_dir.z), L::load(&s.reach[i]));
-        return rayq::detail::all_lanes(passes_line<T, Test>(line.uu, line.ll, line.rr, P(f.abs_slack)) && line.uu < L::load(&s.far[i]));
+        const auto load = [](const T* p) RAYQ_INLINE_LAMBDA { return L::load(p); };
+        return rayq::detail::all_lanes(line_passes_bounds<Test, typename L::pack>(f, s, g * L::width, load));
     }
+}
+
+// The same for primitive i alone, in scalar arithmetic: a scene of one or two primitives tests each
+// so before its scalar query (cheaper than a lane group's set-up).
+template <BoundTest Test, class T>
+RAYQ_INLINE bool line_passes_bound(const BoundFilterRay<T>& f, const BoundSoA<T>& s, std::size_t i)
+{
+    if constexpr (Test == BoundTest::line) return false;
+    else return line_passes_bounds<Test, T>(f, s, i, [](const T* p) RAYQ_INLINE_LAMBDA { return *p; });
 }
 
 // ---- many rays against one primitive -------------------------------------------------------------
@@ -274,8 +293,8 @@ template <class T>
 struct RayStream {
     std::vector<Ray<T>> rays;
     static constexpr int width = rayq::detail::Lanes<T>::width;
-    rayq::detail::LaneColumn<T> ox, oy, oz, dx, dy, dz, abs_slack;  // d: the unit direction
-    rayq::detail::LaneColumn<T> tmin, tmax, inv_len, t_slack_abs;    // the window test's (exact policies)
+    rayq::detail::LaneColumn<T> ox, oy, oz, dx, dy, dz, dd, inv_len, abs_slack;  // BoundFilterRay's
+    rayq::detail::LaneColumn<T> tmin, tmax, t_slack_abs;                         // the window test's (exact policies)
     std::vector<unsigned char> usable_ray;
     std::size_t count = 0;
 
@@ -297,9 +316,9 @@ struct RayStream {
         if (usable_ray[count]) {  // an unusable ray never hits: its lane stays zero and is masked
             const BoundFilterRay<T> f(ray);
             ox[count] = f.origin.x, oy[count] = f.origin.y, oz[count] = f.origin.z;
-            dx[count] = f.unit_dir.x, dy[count] = f.unit_dir.y, dz[count] = f.unit_dir.z;
-            abs_slack[count] = f.abs_slack;
-            tmin[count] = ray.tmin, tmax[count] = ray.tmax, inv_len[count] = f.inv_len, t_slack_abs[count] = f.t_slack_abs;
+            dx[count] = f.direction.x, dy[count] = f.direction.y, dz[count] = f.direction.z;
+            dd[count] = f.dd, inv_len[count] = f.inv_len, abs_slack[count] = f.abs_slack;
+            tmin[count] = ray.tmin, tmax[count] = ray.tmax, t_slack_abs[count] = f.t_slack_abs;
         }
         ++count;
     }
@@ -313,7 +332,7 @@ struct RayStream {
     }
 
 private:
-    std::array<rayq::detail::LaneColumn<T>*, 11> columns() { return {&ox, &oy, &oz, &dx, &dy, &dz, &abs_slack, &tmin, &tmax, &inv_len, &t_slack_abs}; }
+    std::array<rayq::detail::LaneColumn<T>*, 12> columns() { return {&ox, &oy, &oz, &dx, &dy, &dz, &dd, &inv_len, &abs_slack, &tmin, &tmax, &t_slack_abs}; }
 };
 
 // Bit i set: ray i of lane group g may hit the primitive bounded by `b` under `Policy`.
@@ -324,14 +343,13 @@ inline std::uint32_t ray_candidates(const RayStream<T>& s, std::size_t g, const 
     using L = rayq::detail::Lanes<T>;
     using P = typename L::pack;
     const std::size_t i = g * L::width;
-    const P dx = L::load(&s.dx[i]), dy = L::load(&s.dy[i]), dz = L::load(&s.dz[i]);
+    const DirectionPacks<P> d{L::load(&s.dx[i]), L::load(&s.dy[i]), L::load(&s.dz[i]), L::load(&s.dd[i]), L::load(&s.inv_len[i])};
     const PlanePacks<P> plane{P(b.w.x), P(b.w.y), P(b.w.z)};
     const bool planar = Test == BoundTest::line && b.planar;
     [[maybe_unused]] WindowPacks<P> window;
-    if constexpr (Test != BoundTest::line)
-        window = {L::load(&s.tmin[i]), L::load(&s.tmax[i]), L::load(&s.inv_len[i]), L::load(&s.t_slack_abs[i])};
+    if constexpr (Test != BoundTest::line) window = {L::load(&s.tmin[i]), L::load(&s.tmax[i]), L::load(&s.t_slack_abs[i])};
     const auto keep = bound_keep<T, Test>(L::load(&s.ox[i]) - P(b.center.x), L::load(&s.oy[i]) - P(b.center.y),
-                                          L::load(&s.oz[i]) - P(b.center.z), dx, dy, dz, P(b.reach), P(b.far), L::load(&s.abs_slack[i]),
+                                          L::load(&s.oz[i]) - P(b.center.z), d, P(b.reach), P(b.far), L::load(&s.abs_slack[i]),
                                           planar ? &plane : nullptr, &window);
     return L::bits(keep) & s.live(g);
 }

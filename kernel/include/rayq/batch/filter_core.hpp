@@ -162,6 +162,12 @@ struct BoundSlack {
     static inline const T huge = std::sqrt(std::sqrt(std::sqrt(std::numeric_limits<T>::max())));
     static constexpr T disparity = T(0x1p80);
     static bool outside(T length) { return !(length > tiny && length < huge); }
+    // The same range for a length known by its square, narrowed by 8 ulps at each end so that it
+    // answers `outside` for every square whose rounded square root `outside` would (a ray's |d|,
+    // known as |d|² before its square root is taken).
+    static inline const T tiny2 = static_cast<T>(double(tiny) * double(tiny) * (1 + 8 * double(std::numeric_limits<T>::epsilon())));
+    static inline const T huge2 = static_cast<T>(double(huge) * double(huge) * (1 - 8 * double(std::numeric_limits<T>::epsilon())));
+    RAYQ_INLINE static bool outside_squared(T length2) { return !(length2 > tiny2 && length2 < huge2); }
 
     // The slack-widened radius R + Kε·(R + |c|₁); inf (every comparison keeps the lane) for
     // lengths outside the range or a center beyond it.
@@ -196,34 +202,44 @@ RAYQ_INLINE bool normal_within_exact_range(const Vec3<T>& normal)
     return detail::zero_or_within_exact_range(normal) || detail::zero_or_within_exact_range(detail::direction_near_unit(normal));
 }
 
-// What the bounding-sphere filter needs of one ray: its line test works on the unit direction, so
-// the ray's scale (RayScale) is computed up front; plus Kε·|o|₁ (squared and scaled) for the
-// rounding of the hit point's absolute coordinates.
+// What the bounding-sphere filter needs of one ray: d and |d|² for its line test, which compares
+// ℓ²·|d|² (no square root or division stands between a ray and its first lane test, as in the
+// sphere filter); the ray's scale (RayScale) for the window test and the plane test; Kε·|o|₁
+// (squared and scaled) for the rounding of the hit point's absolute coordinates.
 template <class T>
 struct BoundFilterRay : FilterRay<T>, RayScale<T> {
-    Vec3<T> unit_dir;
-    T abs_slack;  // 34·(Kε·|o|₁)² + the underflow slack on ℓ² (inf: keep every lane, and
+    Vec3<T> direction;
+    T dd;         // |d|²
+    T abs_slack;  // (34·(Kε·|o|₁)² + the underflow slack on ℓ²)·|d|² (inf: keep every lane, and
                   // t_slack_abs is inf too)
 
     RAYQ_INLINE explicit BoundFilterRay(const Ray<T>& ray) : FilterRay<T>(ray), RayScale<T>(ray.direction)
     {
-        unit_dir = ray.direction * this->inv_len;
+        direction = ray.direction;
+        dd = dot(ray.direction, ray.direction);
         const T ko1 = BoundSlack<T>::k_eps * this->o1;
-        const bool extreme = !(this->o1 < BoundSlack<T>::huge) || BoundSlack<T>::outside(this->len) ||
+        const bool extreme = !(this->o1 < BoundSlack<T>::huge) || BoundSlack<T>::outside_squared(dd) ||
                              !normal_within_exact_range(ray.direction);
-        // The underflow slack on ℓ² = |u|² − (u·d̂)²: K·min/|d|² + K·min (see FilterRay), factored
-        // so that no step is subnormal.
-        const T line_slack_abs = FilterRay<T>::k_min * (this->inv_len * this->inv_len + T(1));
-        abs_slack = extreme ? std::numeric_limits<T>::infinity() : T(34) * ko1 * ko1 + line_slack_abs;
+        // The underflow slack on ℓ²: K·min/|d|² + K·min (see FilterRay); times |d|², K·min·(1 + |d|²),
+        // and one K·min more for the rounding of |d|² and of the 34·(Kε·|o|₁)²·|d|² below (which
+        // underflows only below min). No step is subnormal.
+        const T line_slack_abs = FilterRay<T>::k_min * (dd + T(2));
+        abs_slack = extreme ? std::numeric_limits<T>::infinity() : T(34) * ko1 * ko1 * dd + line_slack_abs;
         if (extreme) this->t_slack_abs = std::numeric_limits<T>::infinity();  // nor the window test
     }
 };
 
+// The ray's direction as packs: d, |d|² and 1/|d| (see BoundFilterRay).
+template <class P>
+struct DirectionPacks {
+    P dx, dy, dz, dd, inv_len;
+};
+
 // The window the filter tests against (see BoundTest): the ray's (tmin, tmax), narrowed as a
-// scene finds nearer hits, and 1/|d|.
+// scene finds nearer hits.
 template <class P>
 struct WindowPacks {
-    P tmin, tmax, inv_len, t_slack_abs;
+    P tmin, tmax, t_slack_abs;
 };
 
 // Which test the filter may make for `Policy` on `Prim` (see the header):
@@ -236,32 +252,35 @@ struct WindowPacks {
 //           the plane test, no window test.
 enum class BoundTest { exact, point, line };
 
-// What every test of a bounding sphere starts from, given the center offset u = o − c, the unit
-// direction d and the widened radius: |u|², u·d, the squared distance ℓ² = |u|² − (u·d)² from the
-// center to the line, and reach².
+// What every test of a bounding sphere starts from, given the center offset u = o − c, the
+// direction d and the widened radius: |u|², u·d, the squared distance ℓ² from the center to the
+// line times |d|², ℓ²·|d|² = |u|²·|d|² − (u·d)², and reach². Every comparison of ℓ² is made times
+// |d|². Computed with cancellation, ℓ²·|d|² errs by at most ~24ε·|u|²·|d|² (with u's and |d|²'s
+// rounding), far inside the Kε·|u|² slack of every test; finite for a ray that is not extreme
+// (|u|² < far ≤ huge², |d|² < huge²), and a lane whose terms overflow is kept (NaN compares false).
 template <class P>
 struct LineTerms {
     P uu, ud, ll, rr;
 };
 
 template <class P>
-RAYQ_INLINE LineTerms<P> line_terms(const P& ux, const P& uy, const P& uz, const P& dx, const P& dy, const P& dz, const P& reach)
+RAYQ_INLINE LineTerms<P> line_terms(const P& ux, const P& uy, const P& uz, const DirectionPacks<P>& d, const P& reach)
 {
     const P uu = ux * ux + uy * uy + uz * uz;
-    const P ud = ux * dx + uy * dy + uz * dz;
-    return {uu, ud, uu - ud * ud, reach * reach};
+    const P ud = ux * d.dx + uy * d.dy + uz * d.dz;
+    return {uu, ud, uu * d.dd - ud * ud, reach * reach};
 }
 
-// The line test of the window tests (Test ≠ line), on |u|², ℓ² and reach²: true where the ray's
-// line certainly passes the bound. exact: the filter's own rounding; point: that, the
+// The line test of the window tests (Test ≠ line), on |u|², ℓ²·|d|² and reach²: true where the
+// ray's line certainly passes the bound. exact: the filter's own rounding; point: that, the
 // discriminant's error near tangency and the tested point's rounding, all within Kε·(|u|² + R²)
-// in units of ℓ² (header).
+// in units of ℓ² (header); abs_slack comes times |d|² (BoundFilterRay).
 template <class T, BoundTest Test, class P>
-RAYQ_INLINE auto passes_line(const P& uu, const P& ll, const P& rr, const P& abs_slack)
+RAYQ_INLINE auto passes_line(const LineTerms<P>& l, const P& dd, const P& abs_slack)
 {
     using S = BoundSlack<T>;
     constexpr T k_line = Test == BoundTest::exact ? S::k_eps : T(2) * S::k_eps;
-    return ll > P(T(1) + k_line) * rr + P(k_line) * uu + abs_slack;
+    return l.ll > (P(T(1) + k_line) * l.rr + P(k_line) * l.uu) * dd + abs_slack;
 }
 
 // A planar primitive's plane_weight() as packs.
@@ -272,31 +291,32 @@ struct PlanePacks {
 
 // The one test both patterns share, on packs P of T (or on T itself, the one-lane fallback): may
 // some policy hit a primitive whose bounding sphere has center offset u = o − c and widened
-// radius `reach`, along unit direction d? NaN and overflow keep a lane (the scalar path decides).
+// radius `reach`, along direction d? NaN and overflow keep a lane (the scalar path decides).
 // With `plane`, also keep lanes the plane test keeps: drop only if
 // (s/2a)²·(ℓ² − 2·reach²) > |u|² + reach², which implies s·(ℓ − reach) > a·(|u| + reach)
 // ((x + y)² ≤ 2x² + 2y² twice), without a square root per lane; d̂·w = s/2a.
 // With `window`, the window test too (Test ≠ line); Test = exact uses the tight line test.
 template <class T, BoundTest Test, class P>
-RAYQ_INLINE auto bound_keep(const P& ux, const P& uy, const P& uz, const P& dx, const P& dy, const P& dz, const P& reach, const P& far,
+RAYQ_INLINE auto bound_keep(const P& ux, const P& uy, const P& uz, const DirectionPacks<P>& d, const P& reach, const P& far,
                             const P& abs_slack, const PlanePacks<P>* plane, const WindowPacks<P>* window)
 {
     using S = BoundSlack<T>;
-    const auto [uu, ud, ll, rr] = line_terms(ux, uy, uz, dx, dy, dz, reach);
+    const LineTerms<P> line = line_terms(ux, uy, uz, d, reach);
+    const auto [uu, ud, ll, rr] = line;
     const auto out_of_range = !(uu < far);  // kept whatever the tests say
     if constexpr (Test == BoundTest::line) {
-        const P limit = P(S::widen + S::relative) * rr + P(S::relative) * uu + abs_slack;
+        const P limit = (P(S::widen + S::relative) * rr + P(S::relative) * uu) * d.dd + abs_slack;
         auto keep = !(ll > limit) || out_of_range;
-        if (plane) {
-            const P sw = dx * plane->wx + dy * plane->wy + dz * plane->wz;
-            keep = keep || !(sw * sw * (ll - P(2) * rr) > uu + rr);
+        if (plane) {  // on d̂ and ℓ² themselves
+            const P sw = (d.dx * plane->wx + d.dy * plane->wy + d.dz * plane->wz) * d.inv_len;
+            keep = keep || !(sw * sw * (ll * (d.inv_len * d.inv_len) - P(2) * rr) > uu + rr);
         }
         return keep;
     } else {
-        const auto line_far = passes_line<T, Test>(uu, ll, rr, abs_slack);
+        const auto line_far = passes_line<T, Test>(line, d.dd, abs_slack);
         if (rayq::detail::all_lanes(line_far && !out_of_range)) return out_of_range;  // most lane groups of a scene
-        const P tc = -ud * window->inv_len;
-        const P rad = reach * window->inv_len;
+        const P tc = -ud * (d.inv_len * d.inv_len);
+        const P rad = reach * d.inv_len;
         // exact: |u| ≤ (|tc| + rad)·|d| on a kept line, so Kε of it covers tc's rounding, and of
         // rad the correctly rounded t's last ulp. point: the reported t's point is within
         // √(Kε)·(|u| + R) of the bound, so t within that of tc ± rad, as in the sphere filter.
