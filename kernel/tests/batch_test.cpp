@@ -24,7 +24,13 @@ TYPED_TEST_SUITE(BatchTest, AllConfigs, ConfigNames);
 
 using V = Vec3<double>;
 
-// The filters as the scene and batch::intersect call them for Prim under Policy.
+// The filters as the scene and batch::intersect call them for Prim under Policy (the scene's ray
+// checks the direction's exact range only for the exact test: SceneStore::filter_ray).
+template <class Policy, class Prim, class T>
+batch::BoundFilterRay<T> scene_filter_ray(const Ray<T>& ray)
+{
+    return batch::BoundFilterRay<T>(ray, batch::bound_test_v<Policy, Prim> == batch::BoundTest::exact);
+}
 template <class Policy, class Prim, class T>
 std::uint32_t scene_candidates(const batch::BoundFilterRay<T>& f, const Ray<T>& ray, const batch::BoundSoA<T>& soa, std::size_t g)
 {
@@ -34,7 +40,7 @@ std::uint32_t scene_candidates(const batch::BoundFilterRay<T>& f, const Ray<T>& 
 template <class Policy, class Prim, class T>
 bool scene_skips_group(const Ray<T>& ray, const batch::BoundSoA<T>& soa, std::size_t g)
 {
-    return batch::line_passes_group<batch::bound_test_v<Policy, Prim>>(batch::BoundFilterRay<T>(ray), soa, g);
+    return batch::line_passes_group<batch::bound_test_v<Policy, Prim>>(scene_filter_ray<Policy, Prim>(ray), soa, g);
 }
 template <class Policy, class Prim, class T>
 std::uint32_t stream_candidates(const batch::RayStream<T>& stream, std::size_t g, const batch::BoundingSphere<T>& b)
@@ -247,7 +253,7 @@ TYPED_TEST(BatchTest, FilterNeverDropsAHit)
                         }
                     }
                     if (!usable(ray)) continue;
-                    const batch::BoundFilterRay<T> f(ray);
+                    const batch::BoundFilterRay<T> f = scene_filter_ray<Policy, Prim>(ray);
                     for (std::size_t grp = 0; grp < soa.groups(); ++grp) {
                         const std::uint32_t m = scene_candidates<Policy, Prim>(f, ray, soa, grp);
                         const bool skipped = scene_skips_group<Policy, Prim>(ray, soa, grp);
@@ -310,7 +316,7 @@ TYPED_TEST(BatchTest, FilterKeepsSliversSeenEdgeOn)
             const bool hit = occluded(TypeParam::policy, ray, prim);
             hits += hit;
             if (!hit) continue;
-            const batch::BoundFilterRay<T> f(ray);
+            const batch::BoundFilterRay<T> f = scene_filter_ray<Policy, Prim>(ray);
             EXPECT_TRUE((scene_candidates<Policy, Prim>(f, ray, soa, 0) & 1u)) << typeid(Prim).name() << " scene filter dropped a hit";
             batch::RayStream<T> stream;
             stream.push_back(ray);
@@ -380,7 +386,7 @@ TYPED_TEST(BatchTest, FilterKeepsCylinderHitsAlongTheAxis)
             const W rr = W(b.radius) * W(b.radius);
             const W slack = 2 * k_eps * (u2 + rr) + 34 * (k_eps * o1) * (k_eps * o1);
             worst = std::max(worst, double((dist2 - rr) / slack));
-            const batch::BoundFilterRay<T> f(ray);
+            const batch::BoundFilterRay<T> f = scene_filter_ray<Policy, Cylinder<T>>(ray);
             EXPECT_TRUE((scene_candidates<Policy, Cylinder<T>>(f, ray, soa, 0) & 1u)) << "scene filter dropped a hit";
             EXPECT_FALSE((scene_skips_group<Policy, Cylinder<T>>(ray, soa, 0))) << "scene's line test skipped a hit";
             EXPECT_FALSE((batch::line_passes_bound<batch::bound_test_v<Policy, Cylinder<T>>>(f, soa, 0))) << "the one-lane line test passed a hit";
@@ -391,7 +397,8 @@ TYPED_TEST(BatchTest, FilterKeepsCylinderHitsAlongTheAxis)
             Ray<T> around = ray;
             around.tmin = std::nextafter(hit->t, T(0));
             around.tmax = std::nextafter(hit->t, std::numeric_limits<T>::infinity());
-            EXPECT_TRUE((scene_candidates<Policy, Cylinder<T>>(batch::BoundFilterRay<T>(around), around, soa, 0) & 1u)) << "window test dropped a hit";
+            EXPECT_TRUE((scene_candidates<Policy, Cylinder<T>>(scene_filter_ray<Policy, Cylinder<T>>(around), around, soa, 0) & 1u))
+                << "window test dropped a hit";
         }
     }
     std::printf("cylinders along the axis, %s %s: %zu hits (%zu where accurate misses), worst (distance² from the bound − R²)/slack %.3g\n",

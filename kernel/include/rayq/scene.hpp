@@ -130,7 +130,7 @@ struct SceneStore {
         if constexpr (filtered<Policy>)
             if (items.size() > direct_up_to) return scan_filtered<Policy>(ray, visit);
         if constexpr (bounded && filtered<Policy> && batch::bound_test_v<Policy, Prim> != batch::BoundTest::line) {
-            const batch::BoundFilterRay<T> f(ray);
+            const auto f = filter_ray<Policy>(ray);
             for (std::size_t i = 0, n = items.size(); i < n; ++i)
                 if (valid[i] && !batch::line_passes_bound<batch::bound_test_v<Policy, Prim>>(f, soa, i) && visit(i)) return true;
             return false;
@@ -143,11 +143,18 @@ struct SceneStore {
     template <class Policy>
     static constexpr bool filtered = sphere || batch::bound_filter_exact_v<Policy, Prim>;
 
+    // The filter's side of the ray (the direction range check only where the exact test needs it).
+    template <class Policy>
+    RAYQ_INLINE static auto filter_ray(const Ray<T>& ray)
+    {
+        if constexpr (sphere) return batch::SphereFilterRay<T>(ray);
+        else return batch::BoundFilterRay<T>(ray, batch::bound_test_v<Policy, Prim> == batch::BoundTest::exact);
+    }
+
     template <class Policy, class Visit>
     RAYQ_INLINE bool scan_filtered(const Ray<T>& ray, Visit& visit) const
     {
-        using Filter = std::conditional_t<sphere, batch::SphereFilterRay<T>, batch::BoundFilterRay<T>>;
-        const Filter f(ray);
+        const auto f = filter_ray<Policy>(ray);
         const auto candidates = [&](std::size_t g) RAYQ_INLINE_LAMBDA {
             if constexpr (sphere) return batch::sphere_candidates(f, ray.tmin, ray.tmax, soa, g);
             else return batch::bound_candidates<Policy, batch::bound_test_v<Policy, Prim>>(f, ray.tmin, ray.tmax, soa, g);

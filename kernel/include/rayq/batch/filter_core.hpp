@@ -193,7 +193,7 @@ struct BoundSlack {
 // at t = 0 one unit from a disk of radius 0.05) or a parallelogram's edge (components 2^-1074 and
 // 1.3e-312 beside 0.96: a hit at t = −0 for a ray nearly in its plane, outside it; all found by
 // the fuzz harnesses' scene and stream invariants). The filters keep every lane of such a
-// primitive and of such a ray, so batch and scalar still agree.
+// primitive and, for the exact test, of such a ray, so batch and scalar still agree.
 // Components already within range need no scaling (direction_near_unit returns them as they are):
 // the common case, tested first and inline, as the bound filter does for every ray.
 template <class T>
@@ -206,6 +206,12 @@ RAYQ_INLINE bool normal_within_exact_range(const Vec3<T>& normal)
 // ℓ²·|d|² (no square root or division stands between a ray and its first lane test, as in the
 // sphere filter); the ray's scale (RayScale) for the window test and the plane test; Kε·|o|₁
 // (squared and scaled) for the rounding of the hit point's absolute coordinates.
+// `exact_range`: also keep every lane for a direction that `accurate`'s exact tests cannot take
+// (normal_within_exact_range, above); only the exact test (BoundTest::exact) needs it, and a
+// scene under `fast` or `stable` leaves it out (its 17 instructions per ray sat on the way to the
+// first lane test: rayq-bench-embree, native, `fast` with point and normal over Embree's cone
+// curves, three alternating runs: 16 capped cylinders 4.54, 4.64, 4.52 -> 4.87, 4.85, 4.81; one
+// capped cylinder 5.62, 5.83, 5.69 -> 6.59, 6.45, 6.54).
 template <class T>
 struct BoundFilterRay : FilterRay<T>, RayScale<T> {
     Vec3<T> direction;
@@ -213,13 +219,13 @@ struct BoundFilterRay : FilterRay<T>, RayScale<T> {
     T abs_slack;  // (34·(Kε·|o|₁)² + the underflow slack on ℓ²)·|d|² (inf: keep every lane, and
                   // t_slack_abs is inf too)
 
-    RAYQ_INLINE explicit BoundFilterRay(const Ray<T>& ray) : FilterRay<T>(ray), RayScale<T>(ray.direction)
+    RAYQ_INLINE explicit BoundFilterRay(const Ray<T>& ray, bool exact_range = true) : FilterRay<T>(ray), RayScale<T>(ray.direction)
     {
         direction = ray.direction;
         dd = dot(ray.direction, ray.direction);
         const T ko1 = BoundSlack<T>::k_eps * this->o1;
         const bool extreme = !(this->o1 < BoundSlack<T>::huge) || BoundSlack<T>::outside_squared(dd) ||
-                             !normal_within_exact_range(ray.direction);
+                             (exact_range && !normal_within_exact_range(ray.direction));
         // The underflow slack on ℓ²: K·min/|d|² + K·min (see FilterRay); times |d|², K·min·(1 + |d|²),
         // and one K·min more for the rounding of |d|² and of the 34·(Kε·|o|₁)²·|d|² below (which
         // underflows only below min). No step is subnormal.
