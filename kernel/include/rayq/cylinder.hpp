@@ -118,8 +118,9 @@ inline void each_length(S& c, F&& f)
     f(c.p0), f(c.p1), f(c.radius);
 }
 
+// Forced inline: see detail::unit().
 template <class T>
-inline Vec3<T> outward_normal(const Cylinder<T>& cyl, const Vec3<T>& p, Part part)
+RAYQ_INLINE Vec3<T> outward_normal(const Cylinder<T>& cyl, const Vec3<T>& p, Part part)
 {
     const Vec3<T> axis = cyl.p1 - cyl.p0;
     if (part == Part::cap0) return -axis;
