@@ -338,6 +338,27 @@ TYPED_TEST(BatchTest, FilterKeepsSliversSeenEdgeOn)
     EXPECT_GT(hits, 0u);
 }
 
+// A lane group that is only partly filled (the rest padding) is skipped whole by the line test when
+// the line passes its primitives by far, as a full group is: a scene of one cylinder once ran the
+// candidate test for every ray, its padding lanes counted as out of range.
+TYPED_TEST(BatchTest, PartlyFilledGroupIsSkippedByTheLineTest)
+{
+    using T = typename TypeParam::T;
+    using Policy = std::decay_t<decltype(TypeParam::policy)>;
+    using Prim = Cylinder<T>;
+    const Prim cylinder{{T(5), T(5), T(4)}, {T(5), T(5), T(6)}, T(0.5), Caps::both};
+    batch::BoundSoA<T> soa;
+    soa.push_back(cylinder);
+    ASSERT_EQ(soa.groups(), 1u);
+    // Beside the cylinder, far from it and from the origin (where padding lanes sit).
+    const Ray<T> beside{{T(-20), T(-3), T(20)}, {T(1), T(0.25), T(0)}};
+    const Ray<T> through{{T(-20), T(5), T(5)}, {T(1), T(0), T(0)}};
+    ASSERT_FALSE(occluded(TypeParam::policy, beside, cylinder));
+    ASSERT_TRUE(occluded(TypeParam::policy, through, cylinder));
+    EXPECT_TRUE((scene_skips_group<Policy, Prim>(beside, soa, 0)));
+    EXPECT_FALSE((scene_skips_group<Policy, Prim>(through, soa, 0)));
+}
+
 // Cylinders seen along their axis, where the quadratic's leading coefficient is rounding noise:
 // lines tilted off the axis by 10^-12 .. 10^-1 radians, passing inside and beside the cylinder.
 // Every hit fast and stable report must lie within the filter's slack of the bounding sphere
