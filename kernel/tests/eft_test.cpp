@@ -1,6 +1,7 @@
 // Error-free transformations: checked against long double / exact rational reasoning.
 #include "test_support.hpp"
 
+#include <algorithm>
 #include <cstring>
 #include <random>
 
@@ -35,10 +36,16 @@ void check_neighbours()
         }
         EXPECT_EQ(std::memcmp(&up, &ref_up, sizeof x), 0) << x;
         EXPECT_EQ(std::memcmp(&down, &ref_down, sizeof x), 0) << x;
+        // smaller_half_gap: half the nearer neighbour's distance (the one below |x| at a power of two).
+        if (x == T(0)) {
+            EXPECT_TRUE(std::isnan(detail::smaller_half_gap(x)));
+        } else if (std::isfinite(x)) {
+            EXPECT_EQ(detail::smaller_half_gap(x), std::min(ref_up - x, x - ref_down) / T(2)) << x;
+        }
     }
 }
 
-TEST(ErrorFreeTransformations, NextUpAndDownEqualNextafter)
+TEST(ErrorFreeTransformations, NextUpDownAndSmallerHalfGapEqualNextafters)
 {
     check_neighbours<float, std::uint32_t>();
     check_neighbours<double, std::uint64_t>();

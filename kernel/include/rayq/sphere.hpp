@@ -83,15 +83,16 @@ RAYQ_INLINE detail::Estimate<T> quick_residual_f(const Sphere<T>& s, const Ray<T
     const T o[3] = {ray.origin.x, ray.origin.y, ray.origin.z}, c[3] = {s.center.x, s.center.y, s.center.z};
     const T d[3] = {ray.direction.x, ray.direction.y, ray.direction.z};
     Pair<T> sq[3];
-    T cross = T(0), m = s.radius * s.radius;
+    T qe[3], m = s.radius * s.radius;
     for (int i = 0; i < 3; ++i) {
         const Pair<T> u = two_sum(o[i], -c[i]), p = two_product(t, d[i]), q = two_sum(u.hi, p.hi);
         const T e = (q.lo + u.lo) + p.lo;  // q − q.hi, within 4.01u²·M
         const T size = std::abs(u.hi) + std::abs(p.hi);
         m += size * size;
         sq[i] = two_product(q.hi, q.hi);
-        cross += q.hi * e;
+        qe[i] = q.hi * e;
     }
+    const T cross = (qe[0] + qe[1]) + qe[2];  // a tree: one addition less after the last e than a running sum from 0
     const Pair<T> rr = two_product(s.radius, s.radius);
     const Pair<T> a1 = two_sum(sq[0].hi, sq[1].hi), a2 = two_sum(a1.hi, sq[2].hi), a3 = two_sum(a2.hi, -rr.hi);
     const T lo = ((a1.lo + a2.lo) + (a3.lo + (sq[0].lo + sq[1].lo))) + ((sq[2].lo - rr.lo) + T(2) * cross);

@@ -2,6 +2,7 @@
 // and the accurate policy and scene searches step by one ulp on their hot paths.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <limits>
@@ -40,5 +41,19 @@ RAYQ_INLINE T next_up(T x)
 // The next float below x: std::nextafter(x, −inf).
 template <class T>
 RAYQ_INLINE T next_down(T x) { return -next_up(-x); }
+
+// Half the smaller of the gaps between a finite x ≠ 0 and its two neighbours: half the gap from
+// |x| to the next float toward zero (the smaller one at a power of two). One integer step where
+// min(next_up(x) − x, x − next_down(x))/2 takes two branchy ones. NaN for x = 0, whose half gap,
+// denorm_min/2, rounds to 0 anyway: no test "within half a gap" can hold there.
+template <class T>
+RAYQ_INLINE T smaller_half_gap(T x)
+{
+    const T magnitude = std::abs(x);
+    auto b = magnitude_bits(x) - 1;
+    T below;
+    std::memcpy(&below, &b, sizeof b);
+    return (magnitude - below) / T(2);
+}
 
 }  // namespace rayq::detail
