@@ -13,7 +13,8 @@ namespace {
 
 __extension__ typedef __float128 quad;  // GCC/Clang binary128: the exact reference
 
-// next_up/next_down equal std::nextafter toward ±inf on random bit patterns and the specials.
+// next_up/next_down equal std::nextafter toward ±inf on random bit patterns and the specials, and
+// the gaps to the neighbours (wider_gap, smaller_half_gap) equal the nextafter differences.
 template <class T, class Bits>
 void check_neighbours()
 {
@@ -36,6 +37,10 @@ void check_neighbours()
         }
         EXPECT_EQ(std::memcmp(&up, &ref_up, sizeof x), 0) << x;
         EXPECT_EQ(std::memcmp(&down, &ref_down, sizeof x), 0) << x;
+        // wider_gap: the farther neighbour's distance (the one above |x| at a power of two; inf at ±max).
+        if (std::isfinite(x)) {
+            EXPECT_EQ(detail::wider_gap(x), std::max(ref_up - x, x - ref_down)) << x;
+        }
         // smaller_half_gap: half the nearer neighbour's distance (the one below |x| at a power of two).
         if (x == T(0)) {
             EXPECT_TRUE(std::isnan(detail::smaller_half_gap(x)));
@@ -45,7 +50,7 @@ void check_neighbours()
     }
 }
 
-TEST(ErrorFreeTransformations, NextUpDownAndSmallerHalfGapEqualNextafters)
+TEST(ErrorFreeTransformations, NextUpDownAndTheGapsEqualNextafters)
 {
     check_neighbours<float, std::uint32_t>();
     check_neighbours<double, std::uint64_t>();

@@ -130,7 +130,7 @@ inline Hit<scalar_t<Prim>> make_hit(Policy policy, const Ray<scalar_t<Prim>>& ra
         // of it): the root is within one ulp of t. (The exact search is exact at every magnitude
         // since its decisions fall back to Dyadic where expansions leave double's range: before,
         // planes near DBL_MAX were rounded 7 ulps off, and its roots got the a-posteriori bound.)
-        t_error = std::max(detail::next_up(c.t) - c.t, c.t - detail::next_down(c.t));
+        t_error = detail::wider_gap(c.t);
     } else {
         // A posteriori, independent of how t was found: bounds on F(t), F'(t) and a certify how
         // far the exact root can be (detail::certify_root).

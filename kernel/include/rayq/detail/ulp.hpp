@@ -42,6 +42,19 @@ RAYQ_INLINE T next_up(T x)
 template <class T>
 RAYQ_INLINE T next_down(T x) { return -next_up(-x); }
 
+// The wider of the gaps between a finite x and its two neighbours: from |x| to the next float away
+// from zero (the wider one at a power of two; denorm_min at 0). One integer step where
+// max(next_up(x) − x, x − next_down(x)) takes two branchy ones.
+template <class T>
+RAYQ_INLINE T wider_gap(T x)
+{
+    const T magnitude = std::abs(x);
+    auto b = magnitude_bits(x) + 1;
+    T above;
+    std::memcpy(&above, &b, sizeof b);
+    return above - magnitude;
+}
+
 // Half the smaller of the gaps between a finite x ≠ 0 and its two neighbours: half the gap from
 // |x| to the next float toward zero (the smaller one at a power of two). One integer step where
 // min(next_up(x) − x, x − next_down(x))/2 takes two branchy ones. NaN for x = 0, whose half gap,
