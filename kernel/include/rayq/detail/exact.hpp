@@ -168,8 +168,7 @@ RAYQ_INLINE std::pair<W, W> midpoints_around(T t)
         const std::uint32_t bits = bits_of(t);
         const std::uint32_t exponent = bits & 0x7f800000u;
         if (exponent != 0) {
-            float power;  // 2^E, |t| in [2^E, 2^(E+1))
-            std::memcpy(&power, &exponent, sizeof power);
+            const float power = from_bits<float>(exponent);  // 2^E, |t| in [2^E, 2^(E+1))
             const double away = double(power) * 0x1p-24;
             const double toward = (bits & 0x007fffffu) == 0 && exponent > 0x00800000u ? away * 0.5 : away;  // FLT_MIN's lower neighbour is as close as its upper
             const bool positive = t > 0.0f;

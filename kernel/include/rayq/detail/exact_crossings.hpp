@@ -889,7 +889,7 @@ RAYQ_INLINE T linear_root_reach(const Residual<Magnitude<T>>& g, T t)
 template <class T>
 RAYQ_INLINE int sign_over_cell(const Residual<Magnitude<T>>& r, T t)
 {
-    return sign_over_span(r, next_up(std::abs(t)) - std::abs(t));
+    return sign_over_span(r, wider_gap(t));
 }
 
 // An axial primitive: its axis runs from p0 to p1 (a sphere's lane, compiled with `axial` false

@@ -21,6 +21,15 @@ RAYQ_INLINE auto bits_of(T x)
     std::memcpy(&b, &x, sizeof b);
     return b;
 }
+// The float whose IEEE 754 encoding is b (bits_of's inverse).
+template <class T, class Bits>
+RAYQ_INLINE T from_bits(Bits b)
+{
+    static_assert(sizeof(Bits) == sizeof(T));
+    T x;
+    std::memcpy(&x, &b, sizeof x);
+    return x;
+}
 // |x|'s encoding: for magnitudes the unsigned integers' order is the floats' (NaN above infinity).
 template <class T>
 RAYQ_INLINE auto magnitude_bits(T x) { return bits_of(x) & (bits_of(-T(0)) - 1); }
@@ -34,8 +43,7 @@ RAYQ_INLINE T next_up(T x)
     if (x == T(0)) return std::numeric_limits<T>::denorm_min();
     auto b = bits_of(x);
     b = x > T(0) ? b + 1 : b - 1;  // sign-magnitude: a step away from zero for positives, toward it for negatives
-    std::memcpy(&x, &b, sizeof b);
-    return x;
+    return from_bits<T>(b);
 }
 
 // The next float below x: std::nextafter(x, −inf).
@@ -48,11 +56,7 @@ RAYQ_INLINE T next_down(T x) { return -next_up(-x); }
 template <class T>
 RAYQ_INLINE T wider_gap(T x)
 {
-    const T magnitude = std::abs(x);
-    auto b = magnitude_bits(x) + 1;
-    T above;
-    std::memcpy(&above, &b, sizeof b);
-    return above - magnitude;
+    return from_bits<T>(magnitude_bits(x) + 1) - std::abs(x);
 }
 
 // Half the smaller of the gaps between a finite x ≠ 0 and its two neighbours: half the gap from
@@ -62,11 +66,7 @@ RAYQ_INLINE T wider_gap(T x)
 template <class T>
 RAYQ_INLINE T smaller_half_gap(T x)
 {
-    const T magnitude = std::abs(x);
-    auto b = magnitude_bits(x) - 1;
-    T below;
-    std::memcpy(&below, &b, sizeof b);
-    return (magnitude - below) / T(2);
+    return (std::abs(x) - from_bits<T>(magnitude_bits(x) - 1)) / T(2);
 }
 
 }  // namespace rayq::detail
