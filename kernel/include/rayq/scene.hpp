@@ -320,39 +320,49 @@ RAYQ_INLINE std::optional<SceneRef<typename Scene<Prims...>::scalar_type>> neare
     return SceneRef<T>{best.t, best_type, best_index, best.part(), best.entering()};
 }
 
+namespace detail {
+// complete()'s record with its bounds, which need the primitive's crossings again (see there):
+// out of line, so that complete() stays small where it is inlined.
+template <class Policy, class Prim>
+inline Hit<scalar_t<Prim>> certified_scene_hit(Policy policy, const Ray<scalar_t<Prim>>& ray, const Prim& prim, Crossing<scalar_t<Prim>> c,
+                                               HitFields fields)
+{
+    bool earlier_may_count = false;
+    for (const auto& x : leading_crossings(policy, ray, prim)) {
+        if (x.t == c.t && x.part == c.part && x.entering == c.entering) {
+            c.rounded = x.rounded;
+            break;
+        }
+        if (!(x.t < c.t)) break;  // ascending: none before it
+        earlier_may_count = earlier_may_count || in_window(ray, x.t) || may_enter_window(policy, ray, prim, x);
+    }
+    return first_hit(policy, ray, prim, c, earlier_may_count, fields);
+}
+}  // namespace detail
+
 // The hit record of a nearest() answer for the same ray and scene, with the fields asked for, built
 // from the crossing the search found. The bounds also need the crossings before it (one that lies or
 // may exactly lie in the window widens the bound back to tmin, as in intersect()) and, under
 // `accurate`, whether t is correctly rounded: both come from that primitive's crossings computed
 // again, which are not assumed to name the same crossing (FP contraction: see the top of this file;
 // calling intersect() here threw std::bad_optional_access where it found no hit).
+// Forced inline, its visit too, as make_hit is: GCC called the visit out of line per hit (16 capped
+// cylinders under `fast`, point and normal: ~30 instructions per hit for the call alone).
 template <class Policy, class... Prims, std::enable_if_t<is_policy_v<Policy>, int> = 0>
-inline SceneHit<typename Scene<Prims...>::scalar_type> complete(Policy policy,
-                                                                const Ray<typename Scene<Prims...>::scalar_type>& ray,
-                                                                const Scene<Prims...>& scene,
-                                                                const SceneRef<typename Scene<Prims...>::scalar_type>& ref,
-                                                                HitFields fields = HitFields::all)
+RAYQ_INLINE SceneHit<typename Scene<Prims...>::scalar_type> complete(Policy policy,
+                                                                     const Ray<typename Scene<Prims...>::scalar_type>& ray,
+                                                                     const Scene<Prims...>& scene,
+                                                                     const SceneRef<typename Scene<Prims...>::scalar_type>& ref,
+                                                                     HitFields fields = HitFields::all)
 {
     using T = typename Scene<Prims...>::scalar_type;
     std::optional<Hit<T>> hit;
-    detail::visit_stores(scene.stores(), [&](const auto& store, int type) {
+    detail::visit_stores(scene.stores(), [&](const auto& store, int type) RAYQ_INLINE_LAMBDA {
         if (type != ref.type) return false;
         const auto& prim = store.items.at(ref.index);
-        Crossing<T> c{ref.t, ref.part, ref.entering};
-        if (!wants(fields, HitFields::bounds)) {
-            hit = detail::make_hit(policy, ray, prim, c, fields);
-            return true;
-        }
-        bool earlier_may_count = false;
-        for (const auto& x : detail::leading_crossings(policy, ray, prim)) {
-            if (x.t == c.t && x.part == c.part && x.entering == c.entering) {
-                c.rounded = x.rounded;
-                break;
-            }
-            if (!(x.t < c.t)) break;  // ascending: none before it
-            earlier_may_count = earlier_may_count || detail::in_window(ray, x.t) || detail::may_enter_window(policy, ray, prim, x);
-        }
-        hit = detail::first_hit(policy, ray, prim, c, earlier_may_count, fields);
+        const Crossing<T> c{ref.t, ref.part, ref.entering};
+        hit = wants(fields, HitFields::bounds) ? detail::certified_scene_hit(policy, ray, prim, c, fields)
+                                               : detail::make_hit(policy, ray, prim, c, fields);
         return true;
     });
     return {hit.value(), ref.type, ref.index};  // value(): a ref naming no primitive of this scene
