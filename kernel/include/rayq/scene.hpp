@@ -173,13 +173,23 @@ struct SceneStore {
             if constexpr (sphere) return batch::line_passes_group(f, soa, g);
             else return batch::line_passes_group<batch::bound_test_v<Policy, Prim>>(f, soa, g);
         };
-        for (std::size_t g = 0; g < groups; ++g) {
-            while (g < groups && passed(g)) ++g;
-            if (g == groups) break;
+        // One lane group (up to 16 float primitives under AVX-512): candidates() alone, whose own
+        // early exit when the line passes every bound is the skip, so a kept group's line test is
+        // not computed twice (rayq-bench-embree, -march=native, `fast` with point and normal, µs per
+        // 4,096 rays, three alternating runs: 16 capped cylinders 116, 114, 129 -> 111, 106, 108;
+        // 16 spheres 65, 64, 69 -> 72, 59, 61).
+        const auto visit_group = [&](std::size_t g) RAYQ_INLINE_LAMBDA {
             for (std::uint32_t m = candidates(g); m != 0; m &= m - 1) {
                 const std::size_t i = g * decltype(soa)::width + static_cast<std::size_t>(lowest_bit(m));
                 if (valid[i] && visit(i)) return true;
             }
+            return false;
+        };
+        if (groups == 1) return visit_group(0);
+        for (std::size_t g = 0; g < groups; ++g) {
+            while (g < groups && passed(g)) ++g;
+            if (g == groups) break;
+            if (visit_group(g)) return true;
         }
         return false;
     }
