@@ -165,7 +165,10 @@ struct SceneStore {
         // loop with the visit it reloaded them per group (callgrind per ray, 1,000 float spheres,
         // fast: AVX2 5,032 -> 3,088 instructions, SSE2 15,801 -> 10,850; 2,712 and 9,878 with the
         // stored reach², ccc313a). A kept group's line test runs again inside candidates(): the
-        // price of a loop that carries nothing, measured as a win at 16 and 1,000 primitives. The
+        // price of a loop that carries nothing, measured as a win at 16 and 1,000 primitives (the
+        // stopped group's line terms carried on into candidates() instead: rayq-bench-embree,
+        // -march=native, `fast` with point and normal, µs per 4,096 rays, 16 spheres 62-63 -> 77-82,
+        // 1,000 spheres 604-617 -> 745-783). The
         // group tests are forced inline: GCC called them out of line under AVX-512, which halved
         // the rays/s of a 16-sphere scene.
         const std::size_t groups = soa.groups();
