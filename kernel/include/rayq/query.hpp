@@ -94,15 +94,16 @@ inline Vec3<T> facing_ray(Vec3<T> n, const Vec3<T>& direction)
     return n;
 }
 
-// The record's certified bounds (t_error, point_error) for make_hit: not inlined with it, so
-// that the shading record every renderer asks for stays small where it is inlined.
+// The record's certified bounds (t_error, point_error) for make_hit, given its point before
+// saturation (passed, not computed again: under FP contraction a second o + t·d may round
+// differently). Not inlined with it, so that the shading record every renderer asks for stays
+// small where it is inlined.
 template <class Policy, class Prim>
-inline void certify_hit(Policy policy, const Ray<scalar_t<Prim>>& ray, const Prim& prim, const Crossing<scalar_t<Prim>>& c,
-                        Hit<scalar_t<Prim>>& h)
+inline void certify_hit(Policy, const Ray<scalar_t<Prim>>& ray, const Prim& prim, const Crossing<scalar_t<Prim>>& c,
+                        const Vec3<scalar_t<Prim>>& point, Hit<scalar_t<Prim>>& h)
 {
     using T = scalar_t<Prim>;
-    const Vec3<T> p = detail::point_at(policy, ray.origin, ray.direction, c.t);  // make_hit's, before saturation
-    const bool saturated[3] = {std::isinf(p.x), std::isinf(p.y), std::isinf(p.z)};
+    const bool saturated[3] = {std::isinf(point.x), std::isinf(point.y), std::isinf(point.z)};
     constexpr bool exact_decisions = std::is_same_v<Policy, accurate_policy> && accurate_decides_exactly<Prim>::value;
     T t_error;
     if (exact_decisions && c.rounded) {
@@ -156,13 +157,11 @@ RAYQ_INLINE Hit<scalar_t<Prim>> make_hit(Policy policy, const Ray<scalar_t<Prim>
     h.front_face = c.entering;
     h.part = c.part;
     if (fields == HitFields::t) return h;
-    Vec3<T> p = detail::point_at(policy, ray.origin, ray.direction, c.t);
+    const Vec3<T> point = detail::point_at(policy, ray.origin, ray.direction, c.t);
     // A point beyond the largest float (a ray starting near it) saturates to the nearest finite
     // value, as rounding with saturation would; its error bound becomes infinite (certify_hit).
-    const auto saturate = [](T& x) {
-        if (std::isinf(x)) x = std::copysign(std::numeric_limits<T>::max(), x);
-    };
-    saturate(p.x), saturate(p.y), saturate(p.z);
+    const auto saturate = [](T x) { return std::isinf(x) ? std::copysign(std::numeric_limits<T>::max(), x) : x; };
+    const Vec3<T> p{saturate(point.x), saturate(point.y), saturate(point.z)};
     if (wants(fields, HitFields::point)) h.point = p;
     if (wants(fields, HitFields::normal)) {
         Vec3<T> n = unit(outward_normal(prim, p, c.part));
@@ -181,7 +180,7 @@ RAYQ_INLINE Hit<scalar_t<Prim>> make_hit(Policy policy, const Ray<scalar_t<Prim>
         if (dot(n, ray.direction) > T(0)) n = facing_ray(n, ray.direction);
         h.normal = n;
     }
-    if (wants(fields, HitFields::bounds)) certify_hit(policy, ray, prim, c, h);
+    if (wants(fields, HitFields::bounds)) certify_hit(policy, ray, prim, c, point, h);
     return h;
 }
 
