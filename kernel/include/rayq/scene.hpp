@@ -168,9 +168,8 @@ struct SceneStore {
         // price of a loop that carries nothing, measured as a win at 16 and 1,000 primitives (the
         // stopped group's line terms carried on into candidates() instead: rayq-bench-embree,
         // -march=native, `fast` with point and normal, µs per 4,096 rays, 16 spheres 62-63 -> 77-82,
-        // 1,000 spheres 604-617 -> 745-783). The
-        // group tests are forced inline: GCC called them out of line under AVX-512, which halved
-        // the rays/s of a 16-sphere scene.
+        // 1,000 spheres 604-617 -> 745-783). The group tests are forced inline: GCC called them out
+        // of line under AVX-512, which halved the rays/s of a 16-sphere scene.
         const std::size_t groups = soa.groups();
         const auto passed = [&](std::size_t g) RAYQ_INLINE_LAMBDA {
             if constexpr (sphere) return batch::line_passes_group(f, soa, g);
