@@ -98,9 +98,14 @@ inline Vec3<T> facing_ray(Vec3<T> n, const Vec3<T>& direction)
 // saturation (passed, not computed again: under FP contraction a second o + t·d may round
 // differently). Not inlined with it, so that the shading record every renderer asks for stays
 // small where it is inlined.
+template <class T>
+struct HitBounds {
+    T t_error;
+    Vec3<T> point_error;
+};
 template <class Policy, class Prim>
-inline void certify_hit(Policy, const Ray<scalar_t<Prim>>& ray, const Prim& prim, const Crossing<scalar_t<Prim>>& c,
-                        const Vec3<scalar_t<Prim>>& point, Hit<scalar_t<Prim>>& h)
+inline HitBounds<scalar_t<Prim>> certify_hit(Policy, const Ray<scalar_t<Prim>>& ray, const Prim& prim, const Crossing<scalar_t<Prim>>& c,
+                                             const Vec3<scalar_t<Prim>>& point)
 {
     using T = scalar_t<Prim>;
     const bool saturated[3] = {std::isinf(point.x), std::isinf(point.y), std::isinf(point.z)};
@@ -136,10 +141,9 @@ inline void certify_hit(Policy, const Ray<scalar_t<Prim>>& ray, const Prim& prim
         return grow((d == T(0) ? T(0) : root_error * std::abs(d)) + g2 * (std::abs(o) + std::abs(c.t * d)));
     };
     constexpr T inf = std::numeric_limits<T>::infinity();
-    h.t_error = t_error;
-    h.point_error = {saturated[0] ? inf : axis_error(ray.origin.x, ray.direction.x),
-                     saturated[1] ? inf : axis_error(ray.origin.y, ray.direction.y),
-                     saturated[2] ? inf : axis_error(ray.origin.z, ray.direction.z)};
+    return {t_error,
+            {saturated[0] ? inf : axis_error(ray.origin.x, ray.direction.x), saturated[1] ? inf : axis_error(ray.origin.y, ray.direction.y),
+             saturated[2] ? inf : axis_error(ray.origin.z, ray.direction.z)}};
 }
 
 // The hit record of crossing c, with the fields asked for. Forced inline, its rare parts
@@ -148,15 +152,18 @@ inline void certify_hit(Policy, const Ray<scalar_t<Prim>>& ray, const Prim& prim
 // it; standalone loop, -march=native, ns per ray, three alternating runs: 27.3, 27.5, 27.3 ->
 // 24.6, 25.2, 24.2 with complete() inlined too; rayq-bench-embree, two runs, µs per 4,096 rays:
 // 16 spheres 69.2, 73.6 -> 63.4, 69.8, 16 capped cylinders 116.8, 125.5 -> 115.8, 121.4).
+// Written into h, whose fields not asked for keep what they hold (a fresh Hit's defaults), so that a
+// caller keeping the record in memory gets it stored there field by field (scene.hpp's
+// fill_scene_hit); make_hit returns it. The bounds come back by value, so h never escapes into a call.
 template <class Policy, class Prim>
-RAYQ_INLINE Hit<scalar_t<Prim>> make_hit(Policy policy, const Ray<scalar_t<Prim>>& ray, const Prim& prim,
-                                          const Crossing<scalar_t<Prim>>& c, HitFields fields = HitFields::all)
+RAYQ_INLINE void write_hit(Policy policy, const Ray<scalar_t<Prim>>& ray, const Prim& prim, const Crossing<scalar_t<Prim>>& c,
+                           HitFields fields, Hit<scalar_t<Prim>>& h)
 {
     using T = scalar_t<Prim>;
-    Hit<T> h{c.t};
+    h.t = c.t;
     h.front_face = c.entering;
     h.part = c.part;
-    if (fields == HitFields::t) return h;
+    if (fields == HitFields::t) return;
     const Vec3<T> point = detail::point_at(policy, ray.origin, ray.direction, c.t);
     // A point beyond the largest float (a ray starting near it) saturates to the nearest finite
     // value, as rounding with saturation would; its error bound becomes infinite (certify_hit).
@@ -180,7 +187,19 @@ RAYQ_INLINE Hit<scalar_t<Prim>> make_hit(Policy policy, const Ray<scalar_t<Prim>
         if (dot(n, ray.direction) > T(0)) n = facing_ray(n, ray.direction);
         h.normal = n;
     }
-    if (wants(fields, HitFields::bounds)) certify_hit(policy, ray, prim, c, point, h);
+    if (wants(fields, HitFields::bounds)) {
+        const HitBounds<T> b = certify_hit(policy, ray, prim, c, point);
+        h.t_error = b.t_error;
+        h.point_error = b.point_error;
+    }
+}
+
+template <class Policy, class Prim>
+RAYQ_INLINE Hit<scalar_t<Prim>> make_hit(Policy policy, const Ray<scalar_t<Prim>>& ray, const Prim& prim,
+                                          const Crossing<scalar_t<Prim>>& c, HitFields fields = HitFields::all)
+{
+    Hit<scalar_t<Prim>> h{c.t};
+    write_hit(policy, ray, prim, c, fields, h);
     return h;
 }
 
