@@ -106,12 +106,13 @@ void expect_same_hit(const Hit<T>& a, const Hit<T>& b)
     EXPECT_TRUE(same_bits(a.t_error, b.t_error));
 }
 
-// The filter keeps every sphere that any policy hits in the window.
+// The filter keeps every sphere that any policy hits in the window, and so do both line tests
+// by which a scan skips whole groups (against d, and against d/|d| for many groups).
 TYPED_TEST(SceneTest, SphereFilterNeverDropsAHit)
 {
     using T = typename TypeParam::T;
     World<T> w(0x5CE4E001 + sizeof(T));
-    std::size_t kept = 0, hits = 0, lanes = 0;
+    std::size_t kept = 0, hits = 0, lanes = 0, passed = 0, passed_unit = 0;
     for (int scene = 0; scene < 40; ++scene) {
         batch::SphereSoA<T> soa;
         std::vector<Sphere<T>> spheres;
@@ -123,9 +124,14 @@ TYPED_TEST(SceneTest, SphereFilterNeverDropsAHit)
             const Ray<T> ray = w.ray(spheres, 10.0);
             if (!usable(ray)) continue;
             const batch::SphereFilterRay<T> f(ray);
+            const batch::UnitLineRay<T> unit(ray.direction, f.dd);
             for (std::size_t g = 0; g < soa.groups(); ++g) {
                 const std::uint32_t m = batch::sphere_candidates(f, ray.tmin, ray.tmax, soa, g);
                 kept += std::bitset<32>(m).count();
+                const bool line_passes = batch::line_passes_group(f, soa, g);
+                const bool unit_passes = batch::line_passes_group(f, unit, soa, g);
+                passed += line_passes;
+                passed_unit += unit_passes;
                 for (int lane = 0; lane < batch::SphereSoA<T>::width; ++lane) {
                     const std::size_t i = g * batch::SphereSoA<T>::width + static_cast<std::size_t>(lane);
                     if (i >= spheres.size()) break;
@@ -135,6 +141,8 @@ TYPED_TEST(SceneTest, SphereFilterNeverDropsAHit)
                     if (hit) {
                         EXPECT_TRUE(m >> lane & 1u) << "dropped sphere " << i << " hit at t = "
                                                     << intersect(TypeParam::policy, ray, spheres[i])->t;
+                        EXPECT_FALSE(line_passes) << "group of sphere " << i << " skipped (line test against d)";
+                        EXPECT_FALSE(unit_passes) << "group of sphere " << i << " skipped (line test against d/|d|)";
                     }
                 }
             }
@@ -142,6 +150,9 @@ TYPED_TEST(SceneTest, SphereFilterNeverDropsAHit)
     }
     // It must also cull: rays aimed at one of 64 scattered spheres pass most of the others by.
     EXPECT_LT(kept, lanes / 2) << "kept " << kept << " of " << lanes << " lanes (" << hits << " hits)";
+    // The two line tests differ only by rounding: d/|d| skips nearly every group d skips.
+    EXPECT_GE(passed_unit, passed - passed / 100) << passed_unit << " groups skipped against d/|d|, " << passed << " against d";
+    EXPECT_GT(passed, 0u);
 }
 
 TYPED_TEST(SceneTest, EqualsTheScalarQueriesOverEveryPrimitive)

@@ -92,6 +92,26 @@ RAYQ_INLINE bool line_passes_group(const SphereFilterRay<T>& f, const SphereSoA<
     return !f.extreme && detail::all_lanes(sphere_line(f, s, g).far);
 }
 
+// The same answer from sphere_line's comparison divided by |d|² (UnitLineRay): the line passes by
+// when |u|² − reach² − (u·n)² > slack, n = d/(|d|·√(1 − Kε)): seven multiplies per group where
+// sphere_line has eight. Its rounding: the cancelling sum errs by at most 16ε·(|u|² + r²), as
+// sphere_line's does before its factor |d|², and n's own (a division, a square root, three
+// products: ≤ 5ε relative) adds ≤ 11ε·|u|² to (u·n)²: inside the Kε slack with room. Finite under
+// the same bounds (|u|, r below 2H, |n| ≈ 1).
+template <class T>
+RAYQ_INLINE bool line_passes_group(const SphereFilterRay<T>& f, const UnitLineRay<T>& unit, const SphereSoA<T>& s, std::size_t g)
+{
+    using L = detail::Lanes<T>;
+    using P = typename L::pack;
+    const std::size_t i = g * L::width;
+    const P ux = P(f.origin.x) - L::load(&s.cx[i]);
+    const P uy = P(f.origin.y) - L::load(&s.cy[i]);
+    const P uz = P(f.origin.z) - L::load(&s.cz[i]);
+    const P un = ux * P(unit.n.x) + uy * P(unit.n.y) + uz * P(unit.n.z);
+    const P w = ((ux * ux - L::load(&s.reach2[i])) + uy * uy + uz * uz) - un * un;
+    return !f.extreme && detail::all_lanes(w > P(unit.slack));
+}
+
 // Bit i set: sphere i of lane group g may be hit in (tmin, tmax) by some policy; clear: it is
 // certainly missed by every policy. NaN and overflow keep a lane (the scalar path decides).
 template <class T>
