@@ -59,15 +59,23 @@ struct SphereLine {
     P ud;
     decltype(P() < P()) far;
 };
+// u = o − c for the spheres of lane group g.
+template <class T>
+RAYQ_INLINE Vec3<typename detail::Lanes<T>::pack> offsets_from_centers(const FilterRay<T>& f, const SphereSoA<T>& s, std::size_t g)
+{
+    using L = detail::Lanes<T>;
+    using P = typename L::pack;
+    const std::size_t i = g * L::width;
+    return {P(f.origin.x) - L::load(&s.cx[i]), P(f.origin.y) - L::load(&s.cy[i]), P(f.origin.z) - L::load(&s.cz[i])};
+}
+
 template <class T>
 RAYQ_INLINE SphereLine<typename detail::Lanes<T>::pack> sphere_line(const SphereFilterRay<T>& f, const SphereSoA<T>& s, std::size_t g)
 {
     using L = detail::Lanes<T>;
     using P = typename L::pack;
     const std::size_t i = g * L::width;
-    const P ux = P(f.origin.x) - L::load(&s.cx[i]);
-    const P uy = P(f.origin.y) - L::load(&s.cy[i]);
-    const P uz = P(f.origin.z) - L::load(&s.cz[i]);
+    const auto [ux, uy, uz] = offsets_from_centers(f, s, g);
     // The line passes by when ℓ² > r² + Kε·(|u|² + r²) + slack, ℓ² = |u|² − (u·d)²/|d|² the
     // squared distance from the center to the line. Divided by 1 − Kε and multiplied by |d|², that
     // is (|u|² − r²·(1 + Kε)/(1 − Kε))·|d|² − (u·d/√(1 − Kε))² > slack·|d|²/(1 − Kε): every factor
@@ -104,9 +112,7 @@ RAYQ_INLINE bool line_passes_group(const SphereFilterRay<T>& f, const UnitLineRa
     using L = detail::Lanes<T>;
     using P = typename L::pack;
     const std::size_t i = g * L::width;
-    const P ux = P(f.origin.x) - L::load(&s.cx[i]);
-    const P uy = P(f.origin.y) - L::load(&s.cy[i]);
-    const P uz = P(f.origin.z) - L::load(&s.cz[i]);
+    const auto [ux, uy, uz] = offsets_from_centers(f, s, g);
     const P un = ux * P(unit.n.x) + uy * P(unit.n.y) + uz * P(unit.n.z);
     const P w = ((ux * ux - L::load(&s.reach2[i])) + uy * uy + uz * uz) - un * un;
     return !f.extreme && detail::all_lanes(w > P(unit.slack));
