@@ -5,9 +5,19 @@
 // RAYQ_NO_FLATTEN, defined before the first rayq include, drops RAYQ_FLATTEN: the same results,
 // a slower `accurate`, and a much faster GCC build of code that instantiates many intersectors
 // (certified_bound_test.cpp at -O1: 84 s -> 31 s); meant for test and debug builds.
+// RAYQ_NO_FORCED_INLINE drops RAYQ_FLATTEN and the forced inlining too, leaving inlining to the
+// compiler: the same results, slower code, and a much faster build where the compiler's back end
+// is the cost, as under sanitizers (clang 14, ASan + UBSan, -O1: the benchmark rayq-bench-scene
+// 114 s -> 33 s, the kernel test suite 437 s -> 229 s); tools/sanitize builds everything so.
 #pragma once
 
-#if defined(__GNUC__) || defined(__clang__)
+#if defined(RAYQ_NO_FORCED_INLINE) && (defined(__GNUC__) || defined(__clang__))
+#define RAYQ_INLINE inline
+#define RAYQ_FLATTEN
+#define RAYQ_INLINE_LAMBDA
+#define RAYQ_NOINLINE __attribute__((noinline))
+#define RAYQ_UNLIKELY(condition) __builtin_expect(!!(condition), 0)
+#elif defined(__GNUC__) || defined(__clang__)
 #define RAYQ_INLINE inline __attribute__((always_inline))
 #if defined(RAYQ_NO_FLATTEN)
 #define RAYQ_FLATTEN
