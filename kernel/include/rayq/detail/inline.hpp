@@ -11,20 +11,19 @@
 // 114 s -> 33 s, the kernel test suite 437 s -> 229 s); tools/sanitize builds everything so.
 #pragma once
 
-#if defined(RAYQ_NO_FORCED_INLINE) && (defined(__GNUC__) || defined(__clang__))
+#if defined(__GNUC__) || defined(__clang__)
+#if defined(RAYQ_NO_FORCED_INLINE)
 #define RAYQ_INLINE inline
-#define RAYQ_FLATTEN
 #define RAYQ_INLINE_LAMBDA
-#define RAYQ_NOINLINE __attribute__((noinline))
-#define RAYQ_UNLIKELY(condition) __builtin_expect(!!(condition), 0)
-#elif defined(__GNUC__) || defined(__clang__)
+#else
 #define RAYQ_INLINE inline __attribute__((always_inline))
-#if defined(RAYQ_NO_FLATTEN)
+#define RAYQ_INLINE_LAMBDA __attribute__((always_inline))
+#endif
+#if defined(RAYQ_NO_FLATTEN) || defined(RAYQ_NO_FORCED_INLINE)
 #define RAYQ_FLATTEN
 #else
 #define RAYQ_FLATTEN __attribute__((flatten))
 #endif
-#define RAYQ_INLINE_LAMBDA __attribute__((always_inline))
 #define RAYQ_NOINLINE __attribute__((noinline))
 #define RAYQ_UNLIKELY(condition) __builtin_expect(!!(condition), 0)
 #elif defined(_MSC_VER)
