@@ -34,6 +34,8 @@
 // a = 576ε·κ (ℓ the line's distance from c). Without it a line nearly in the plane and far beside
 // the primitive can be "hit": the fuzz harnesses' scene and stream invariants found such a hit on
 // a float sliver triangle (κ ≈ 3e7).
+// That test keeps every lane Cramer's decisions may accept, so their line test needs no √(Kε)
+// slack, only the filter's own rounding (bound_keep).
 //
 // Cylinders under `fast` and `stable`: their quadratic is the norm form |u' + t·v|² = w² of the
 // projected line, u' = fl((o − p0) × A), v = fl(d × A), with a and b from the same computed v. So
