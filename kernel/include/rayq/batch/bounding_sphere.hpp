@@ -14,8 +14,9 @@
 // Rounding Error" §6.8). The filter therefore drops a primitive only when the ray's line passes its
 // bounding sphere (center c, radius R) by more than √(Kε)·(|o − c| + R) + Kε·(|o|₁ + |c|₁),
 // K = 256 unit roundoffs — the √ term also covers a discriminant error's effect near tangency
-// (Ray Tracing Gems ch. 7). No window test for them: a policy's t may err far more than its point
-// near a flat part seen edge-on.
+// (Ray Tracing Gems ch. 7) — or, triangles and parallelograms, by more than the filter's own
+// rounding where their plane test (below) drops it too. No window test for them: a policy's t may
+// err far more than its point near a flat part seen edge-on.
 //
 // `accurate` decides hit and window exactly and rounds t correctly, so its exact hit lies within
 // R of c, and its t within R/|d| of the center's projection tc = (c − o)·d/|d|²: the filter keeps

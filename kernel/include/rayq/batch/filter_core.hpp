@@ -299,8 +299,8 @@ RAYQ_INLINE LineTerms<P> line_terms(const P& ux, const P& uy, const P& uz, const
 }
 
 // The line test of the window tests (Test ≠ line; in point's form also Test = line's, beside its
-// plane test), on |u|², ℓ²·|d|² and reach²: true where the
-// ray's line certainly passes the bound. exact: the filter's own rounding; point: that, the
+// plane test), on |u|², ℓ²·|d|² and reach²: true where the ray's line certainly passes the
+// bound. exact: the filter's own rounding; point: that, the
 // discriminant's error near tangency and the tested point's rounding, all within Kε·(|u|² + R²)
 // in units of ℓ² (header); abs_slack comes times |d|² (BoundFilterRay).
 template <class T, BoundTest Test, class P>
