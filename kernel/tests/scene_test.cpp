@@ -200,6 +200,70 @@ TYPED_TEST(SceneTest, EqualsTheScalarQueriesOverEveryPrimitive)
     }
 }
 
+// Scenes of cylinders alone, with rays aimed at them (the test above aims at spheres): at their
+// sides, rims and caps, from inside, along and across their axes (where the scalar query's solver
+// and slab take their special branches), in windows that end near a hit; capped, open and invalid
+// cylinders in the same lane groups; copies of a cylinder for ties. Every answer must be the scalar
+// queries', bit for bit: the bounding-sphere filter may drop no cylinder a policy hits.
+TYPED_TEST(SceneTest, CylinderScenesEqualTheScalarQueries)
+{
+    using T = typename TypeParam::T;
+    const auto p = TypeParam::policy;
+    World<T> w(0xC71E0000 + sizeof(T));
+    for (int scene_n : {3, 8, 19, 40}) {
+        Scene<Cylinder<T>> scene;
+        std::vector<Cylinder<T>> cylinders;
+        for (int i = 0; i < scene_n; ++i) {
+            const Vec3<double> a = w.unit_vector() * w.uniform(0, 6), axis = w.unit_vector() * w.uniform(0.2, 3);
+            const bool aligned = i % 5 == 1;  // axis along z: rays along z are parallel, along x perpendicular
+            Cylinder<T> c{w.cast(a), w.cast(aligned ? a + Vec3<double>{0, 0, 2} : a + axis), T(w.log_uniform(0.05, 1.5)),
+                          i % 4 == 3 ? Caps::none : Caps::both};
+            if (i % 11 == 7) c.radius = -c.radius;  // invalid: kept, never hit
+            if (i % 13 == 12) c = cylinders.front();  // a tie: the first copy wins
+            cylinders.push_back(c);
+            scene.add(c);
+        }
+        int hits = 0, cap_hits = 0;
+        for (int k = 0; k < 3000; ++k) {
+            const Cylinder<T>& c = cylinders[std::uniform_int_distribution<std::size_t>(0, cylinders.size() - 1)(w.rng)];
+            const Vec3<double> p0{double(c.p0.x), double(c.p0.y), double(c.p0.z)}, p1{double(c.p1.x), double(c.p1.y), double(c.p1.z)};
+            const double r = std::abs(double(c.radius));
+            // A target on the cylinder's side, rim or caps (or just off them), then a direction.
+            const double h = w.uniform(-0.1, 1.1), angle = w.uniform(0, 6.283185307179586), rho = r * w.uniform(0, 1.05);
+            Vec3<double> axis = p1 - p0, e = cross(axis, Vec3<double>{1, 0, 0});
+            if (length(e) < 1e-3 * length(axis)) e = cross(axis, Vec3<double>{0, 1, 0});
+            e = e / length(e);
+            const Vec3<double> f = cross(axis / length(axis), e);
+            const Vec3<double> target = p0 + axis * h + (e * std::cos(angle) + f * std::sin(angle)) * rho;
+            const int kind = std::uniform_int_distribution<int>(0, 5)(w.rng);
+            Vec3<double> d = w.unit_vector();
+            if (kind == 1) d = Vec3<double>{0, 0, w.uniform(0, 1) < 0.5 ? 1.0 : -1.0};  // along the aligned axes
+            if (kind == 2) d = Vec3<double>{1, 0, 0};                                    // across them
+            Vec3<double> o = target - d * w.uniform(0, 20);
+            if (kind == 3) o = target;  // from on or inside the surface
+            Ray<T> ray{w.cast(o), w.cast(d)};
+            if (kind == 4) {  // a window that ends just before or after a scalar hit
+                std::optional<SceneHit<T>> first;
+                brute(stable, ray, cylinders, 0, first);
+                if (first) ray.tmax = std::nextafter(first->hit.t, w.uniform(0, 1) < 0.5 ? T(0) : std::numeric_limits<T>::infinity());
+            }
+            std::optional<SceneHit<T>> expected;
+            brute(p, ray, cylinders, 0, expected);
+            const auto got = intersect(p, ray, scene);
+            ASSERT_EQ(got.has_value(), expected.has_value()) << "scene of " << scene_n << ", ray " << k;
+            EXPECT_EQ(occluded(p, ray, scene), expected.has_value()) << "scene of " << scene_n << ", ray " << k;
+            if (!got) continue;
+            ++hits;
+            cap_hits += got->hit.part != Part::surface;
+            EXPECT_EQ(got->index, expected->index) << "scene of " << scene_n << ", ray " << k;
+            expect_same_hit(got->hit, expected->hit);
+        }
+        // The rays must reach both parts: sides and caps.
+        EXPECT_GT(hits, 1000);
+        EXPECT_GT(cap_hits, 100);
+    }
+}
+
 TYPED_TEST(SceneTest, BadRaysAndInvalidPrimitivesNeverHit)
 {
     using T = typename TypeParam::T;
