@@ -226,14 +226,14 @@ TYPED_TEST(SceneTest, CylinderScenesEqualTheScalarQueries)
         int hits = 0, cap_hits = 0;
         for (int k = 0; k < 3000; ++k) {
             const Cylinder<T>& c = cylinders[std::uniform_int_distribution<std::size_t>(0, cylinders.size() - 1)(w.rng)];
-            const Vec3<double> p0{double(c.p0.x), double(c.p0.y), double(c.p0.z)}, p1{double(c.p1.x), double(c.p1.y), double(c.p1.z)};
+            const Vec3<double> p0 = scalar_cast<double>(c.p0), p1 = scalar_cast<double>(c.p1);
             const double r = std::abs(double(c.radius));
             // A target on the cylinder's side, rim or caps (or just off them), then a direction.
             const double h = w.uniform(-0.1, 1.1), angle = w.uniform(0, 6.283185307179586), rho = r * w.uniform(0, 1.05);
             Vec3<double> axis = p1 - p0, e = cross(axis, Vec3<double>{1, 0, 0});
             if (length(e) < 1e-3 * length(axis)) e = cross(axis, Vec3<double>{0, 1, 0});
-            e = e / length(e);
-            const Vec3<double> f = cross(axis / length(axis), e);
+            e = normalize(e);
+            const Vec3<double> f = cross(normalize(axis), e);
             const Vec3<double> target = p0 + axis * h + (e * std::cos(angle) + f * std::sin(angle)) * rho;
             const int kind = std::uniform_int_distribution<int>(0, 5)(w.rng);
             Vec3<double> d = w.unit_vector();
