@@ -53,51 +53,33 @@ struct SurfacePoint {
     V point, t1, t2;
 };
 
-struct Gen {
-    std::mt19937_64 rng;
-    explicit Gen(std::uint64_t seed) : rng(seed) {}
-    double uniform(double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); }
-    double log_uniform(double lo, double hi) { return std::pow(10.0, uniform(std::log10(lo), std::log10(hi))); }
-    V unit()
-    {
-        std::normal_distribution<double> n;
-        const V v{n(rng), n(rng), n(rng)};
-        return v / length(v);
-    }
-    V perpendicular(const V& a)
-    {
-        const V p = cross(a, unit());
-        return p / length(p);
-    }
-    template <class T>
-    static Vec3<T> cast(const V& v) { return {T(v.x), T(v.y), T(v.z)}; }
-    template <class T>
-    static V wide(const Vec3<T>& v) { return {double(v.x), double(v.y), double(v.z)}; }
+struct Gen : Random {
+    using Random::Random;
 
     // A primitive of each kind somewhere in a box of half-size `extent` around `offset`.
     template <class T>
-    void make(Disk<T>& d, const V& at, double size) { d = {cast<T>(at), cast<T>(unit()), T(size)}; }
+    void make(Disk<T>& d, const V& at, double size) { d = {scalar_cast<T>(at), scalar_cast<T>(unit_vector()), T(size)}; }
     template <class T>
     void make(Triangle<T>& t, const V& at, double size)
     {
-        t = {cast<T>(at + unit() * size), cast<T>(at + unit() * size), cast<T>(at + unit() * size)};
+        t = {scalar_cast<T>(at + unit_vector() * size), scalar_cast<T>(at + unit_vector() * size), scalar_cast<T>(at + unit_vector() * size)};
     }
     template <class T>
     void make(Parallelogram<T>& p, const V& at, double size)
     {
-        p = {cast<T>(at), cast<T>(unit() * size), cast<T>(unit() * (size * uniform(0.2, 1.5)))};
+        p = {scalar_cast<T>(at), scalar_cast<T>(unit_vector() * size), scalar_cast<T>(unit_vector() * (size * uniform(0.2, 1.5)))};
     }
     template <class T>
     void make(Cylinder<T>& c, const V& at, double size)
     {
-        c = {cast<T>(at), cast<T>(at + unit() * (size * uniform(0.3, 3))), T(size * log_uniform(0.05, 1)),
+        c = {scalar_cast<T>(at), scalar_cast<T>(at + unit_vector() * (size * uniform(0.3, 3))), T(size * log_uniform(0.05, 1)),
              uniform(0, 1) < 0.5 ? Caps::both : Caps::none};
     }
     template <class T>
     void make(Cone<T>& c, const V& at, double size)
     {
         const bool apex = uniform(0, 1) < 0.3;
-        c = {cast<T>(at), T(size * log_uniform(0.05, 1)), cast<T>(at + unit() * (size * uniform(0.3, 3))),
+        c = {scalar_cast<T>(at), T(size * log_uniform(0.05, 1)), scalar_cast<T>(at + unit_vector() * (size * uniform(0.3, 3))),
              apex ? T(0) : T(size * log_uniform(0.05, 1)), uniform(0, 1) < 0.5 ? Caps::both : Caps::none};
     }
 
@@ -105,14 +87,14 @@ struct Gen {
     template <class T>
     SurfacePoint on(const Disk<T>& d)
     {
-        const V n = wide(d.normal) / length(wide(d.normal)), e = perpendicular(n);
+        const V n = scalar_cast<double>(d.normal) / length(scalar_cast<double>(d.normal)), e = perpendicular(n);
         const double s = uniform(0, 1) < 0.5 ? 1.0 : std::sqrt(uniform(0, 1));
-        return {wide(d.center) + e * (double(d.radius) * s), e, cross(n, e)};
+        return {scalar_cast<double>(d.center) + e * (double(d.radius) * s), e, cross(n, e)};
     }
     template <class T>
     SurfacePoint on(const Triangle<T>& t)
     {
-        const V a = wide(t.a), b = wide(t.b), c = wide(t.c);
+        const V a = scalar_cast<double>(t.a), b = scalar_cast<double>(t.b), c = scalar_cast<double>(t.c);
         double u = uniform(0, 1), v = uniform(0, 1);
         if (u + v > 1) u = 1 - u, v = 1 - v;
         if (uniform(0, 1) < 0.5) v = 0;  // on an edge
@@ -123,10 +105,10 @@ struct Gen {
     template <class T>
     SurfacePoint on(const Parallelogram<T>& p)
     {
-        const V e0 = wide(p.edge0), e1 = wide(p.edge1);
+        const V e0 = scalar_cast<double>(p.edge0), e1 = scalar_cast<double>(p.edge1);
         const double u = uniform(0, 1), v = uniform(0, 1) < 0.5 ? 1.0 : uniform(0, 1);
         const V n = cross(e0, e1);
-        return {wide(p.corner) + e0 * u + e1 * v, e0 / length(e0), cross(n / length(n), e0 / length(e0))};
+        return {scalar_cast<double>(p.corner) + e0 * u + e1 * v, e0 / length(e0), cross(n / length(n), e0 / length(e0))};
     }
     SurfacePoint axial(const V& p0, double r0, const V& p1, double r1)
     {
@@ -141,9 +123,9 @@ struct Gen {
         return {point, around, along / length(along)};
     }
     template <class T>
-    SurfacePoint on(const Cylinder<T>& c) { return axial(wide(c.p0), double(c.radius), wide(c.p1), double(c.radius)); }
+    SurfacePoint on(const Cylinder<T>& c) { return axial(scalar_cast<double>(c.p0), double(c.radius), scalar_cast<double>(c.p1), double(c.radius)); }
     template <class T>
-    SurfacePoint on(const Cone<T>& c) { return axial(wide(c.p0), double(c.r0), wide(c.p1), double(c.r1)); }
+    SurfacePoint on(const Cone<T>& c) { return axial(scalar_cast<double>(c.p0), double(c.r0), scalar_cast<double>(c.p1), double(c.r1)); }
 
     // A ray that stresses the filter near `prim`: along a tangent of its surface tilted by ±10^-k
     // out of it (grazing a curved side, nearly parallel to a flat part), from near or far; or a
@@ -156,7 +138,7 @@ struct Gen {
         V o, d;
         if (kind == 0) {
             o = V{uniform(-2, 2), uniform(-2, 2), uniform(-2, 2)} * extent + s.point;
-            d = unit();
+            d = unit_vector();
         } else {
             // kind 5: along t2 (an axial primitive's generator, where its quadratic degenerates).
             const double phi = kind == 5 ? 1.5707963267948966 : uniform(0, 6.283185307179586);
@@ -169,7 +151,7 @@ struct Gen {
             o = s.point - d * distance + n * (uniform(0, 1) < 0.2 ? uniform(-1e-6, 1e-6) * extent : 0.0);
         }
         if (kind == 3) d = d * log_uniform(1e-12, 1e12);
-        Ray<T> out{cast<T>(o), cast<T>(d)};
+        Ray<T> out{scalar_cast<T>(o), scalar_cast<T>(d)};
         if (uniform(0, 1) < 0.2) out.tmin = -out.tmax;
         return out;
     }
@@ -205,13 +187,13 @@ TYPED_TEST(BatchTest, BoundingSpheresHoldTheirPrimitives)
             using Prim = std::remove_pointer_t<decltype(tag)>;
             for (int i = 0; i < 200; ++i) {
                 Prim prim;
-                g.make(prim, g.unit() * g.log_uniform(1e-3, 1e4), g.log_uniform(1e-3, 1e3));
+                g.make(prim, g.unit_vector() * g.log_uniform(1e-3, 1e4), g.log_uniform(1e-3, 1e3));
                 const batch::BoundingSphere<T> b = batch::bounding_sphere(prim);
                 for (int k = 0; k < 20; ++k) {
                     const V p = g.on(prim).point;
-                    const double distance = length(p - Gen::wide(b.center));
+                    const double distance = length(p - scalar_cast<double>(b.center));
                     // The center is rounded to T: the filter's Kε·|c|₁ slack covers that.
-                    const double slack = 4 * std::numeric_limits<T>::epsilon() * length(Gen::wide(b.center)) + 1e-300;
+                    const double slack = 4 * std::numeric_limits<T>::epsilon() * length(scalar_cast<double>(b.center)) + 1e-300;
                     EXPECT_LE(distance, double(b.radius) * (1 + 1e-12) + slack) << typeid(Prim).name();
                 }
             }
@@ -234,7 +216,7 @@ TYPED_TEST(BatchTest, FilterNeverDropsAHit)
             std::size_t kept = 0, lanes = 0, hits = 0, skipped_groups = 0, passed_lanes = 0;
             for (int scene = 0; scene < 24; ++scene) {
                 // Far from the origin at times: the hit point's rounding grows with |o| and |c|.
-                const V offset = scene % 3 == 0 ? g.unit() * g.log_uniform(1e2, 1e5) : V{0, 0, 0};
+                const V offset = scene % 3 == 0 ? g.unit_vector() * g.log_uniform(1e2, 1e5) : V{0, 0, 0};
                 std::vector<Prim> prims(48);
                 batch::BoundSoA<T> soa;
                 for (Prim& p : prims) {
@@ -311,7 +293,7 @@ TYPED_TEST(BatchTest, FilterKeepsSliversSeenEdgeOn)
             const V at = center + side * (size * g.log_uniform(0.01, 30)) + along * (size * g.uniform(-2, 2));
             const V in_plane = g.perpendicular(normal);
             const V dir = in_plane + normal * ((g.uniform(0, 1) < 0.5 ? -1.0 : 1.0) * g.log_uniform(1e-12, 1e-1));
-            const Ray<T> ray{Gen::cast<T>(at - dir * (size * g.log_uniform(1, 100))), Gen::cast<T>(dir)};
+            const Ray<T> ray{scalar_cast<T>(at - dir * (size * g.log_uniform(1, 100))), scalar_cast<T>(dir)};
             if (!usable(ray)) continue;
             const bool hit = occluded(TypeParam::policy, ray, prim);
             hits += hit;
@@ -325,14 +307,14 @@ TYPED_TEST(BatchTest, FilterKeepsSliversSeenEdgeOn)
     };
     for (int i = 0; i < 200; ++i) {
         const double size = g.log_uniform(1e-2, 1e2), aspect = g.log_uniform(1, 10 / std::numeric_limits<T>::epsilon());
-        const V center = g.unit() * g.log_uniform(1e-3, 1e3), normal = g.unit(), along = g.perpendicular(normal);
+        const V center = g.unit_vector() * g.log_uniform(1e-3, 1e3), normal = g.unit_vector(), along = g.perpendicular(normal);
         const V across = cross(normal, along);
         // A sliver: long along `along`, 1/aspect as wide.
-        const Triangle<T> tri{Gen::cast<T>(center - along * size), Gen::cast<T>(center + along * size),
-                              Gen::cast<T>(center + along * (size * g.uniform(-1, 1)) + across * (size / aspect))};
+        const Triangle<T> tri{scalar_cast<T>(center - along * size), scalar_cast<T>(center + along * size),
+                              scalar_cast<T>(center + along * (size * g.uniform(-1, 1)) + across * (size / aspect))};
         if (validate(tri)) check(tri, center, normal, along, size);
-        const Parallelogram<T> par{Gen::cast<T>(center - along * size), Gen::cast<T>(along * (2 * size)),
-                                   Gen::cast<T>(along * (size * g.uniform(-1, 1)) + across * (size / aspect))};
+        const Parallelogram<T> par{scalar_cast<T>(center - along * size), scalar_cast<T>(along * (2 * size)),
+                                   scalar_cast<T>(along * (size * g.uniform(-1, 1)) + across * (size / aspect))};
         if (validate(par)) check(par, center, normal, along, size);
     }
     EXPECT_GT(hits, 0u);
@@ -374,8 +356,8 @@ TYPED_TEST(BatchTest, FilterKeepsCylinderHitsAlongTheAxis)
     double worst = -std::numeric_limits<double>::infinity();
     for (int i = 0; i < 300; ++i) {
         const double r = g.log_uniform(1e-2, 1e2), h = r * g.log_uniform(0.1, 100);
-        const V center = g.unit() * g.log_uniform(1e-3, 1e3), axis = g.unit();
-        const Cylinder<T> cyl{Gen::cast<T>(center - axis * (h / 2)), Gen::cast<T>(center + axis * (h / 2)), T(r),
+        const V center = g.unit_vector() * g.log_uniform(1e-3, 1e3), axis = g.unit_vector();
+        const Cylinder<T> cyl{scalar_cast<T>(center - axis * (h / 2)), scalar_cast<T>(center + axis * (h / 2)), T(r),
                               g.uniform(0, 1) < 0.5 ? Caps::both : Caps::none};
         if (!validate(cyl)) continue;
         const batch::BoundingSphere<T> b = batch::bounding_sphere(cyl);
@@ -386,7 +368,7 @@ TYPED_TEST(BatchTest, FilterKeepsCylinderHitsAlongTheAxis)
             const V dir = axis + g.perpendicular(axis) * ((g.uniform(0, 1) < 0.5 ? -1.0 : 1.0) * g.log_uniform(1e-12, 1e-1));
             const double beside = k % 2 ? 1 + (g.uniform(0, 1) < 0.5 ? -1 : 1) * g.log_uniform(1e-9, 1e-1) : g.log_uniform(0.5, 30);
             const V at = center + side * (r * beside) - dir * (h * g.uniform(0.6, 10));
-            const Ray<T> ray{Gen::cast<T>(at), Gen::cast<T>(dir)};
+            const Ray<T> ray{scalar_cast<T>(at), scalar_cast<T>(dir)};
             if (!usable(ray)) continue;
             const auto hit = intersect(TypeParam::policy, ray, cyl, HitFields::t);
             if (!hit) continue;
@@ -441,7 +423,7 @@ TYPED_TEST(BatchTest, StreamEqualsTheScalarQueries)
             std::size_t hits = 0, rays = 0;
             for (int n : {1, 5, 37, 300}) {
                 Prim prim;
-                g.make(prim, g.unit() * g.uniform(0, 3), g.log_uniform(0.1, 2));
+                g.make(prim, g.unit_vector() * g.uniform(0, 3), g.log_uniform(0.1, 2));
                 batch::RayStream<T> stream;
                 for (int k = 0; k < n; ++k) stream.push_back(g.ray_near<T>(prim, 3.0));
                 stream.push_back(Ray<T>{Vec3<T>{T(0), T(0), T(0)}, Vec3<T>{T(0), T(0), T(0)}});  // never hits

@@ -17,19 +17,9 @@ class SceneTest : public ::testing::Test {};
 TYPED_TEST_SUITE(SceneTest, AllConfigs, ConfigNames);
 
 template <class T>
-struct World {
-    std::mt19937_64 rng;
-    explicit World(std::uint64_t seed) : rng(seed) {}
-
-    double uniform(double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); }
-    double log_uniform(double lo, double hi) { return std::pow(10.0, uniform(std::log10(lo), std::log10(hi))); }
-    Vec3<double> unit_vector()
-    {
-        std::normal_distribution<double> n;
-        Vec3<double> v{n(rng), n(rng), n(rng)};
-        return v / length(v);
-    }
-    Vec3<T> cast(const Vec3<double>& v) { return {T(v.x), T(v.y), T(v.z)}; }
+struct World : Random {
+    using Random::Random;
+    Vec3<T> cast(const Vec3<double>& v) { return scalar_cast<T>(v); }
 
     // Spheres of mixed sizes spread over a box, a few invalid ones among them.
     Sphere<T> sphere(double extent)

@@ -3,8 +3,6 @@
 // can meet nothing; rays spawned into a sphere must meet its far side, a whole chord away.
 #include "test_support.hpp"
 
-#include <random>
-
 namespace rayq::test::spawn_test {
 namespace {
 
@@ -12,30 +10,22 @@ template <class C>
 class SpawnTest : public ::testing::Test {};
 TYPED_TEST_SUITE(SpawnTest, AllConfigs, ConfigNames);
 
-template <class T>
-Vec3<T> random_unit(std::mt19937_64& rng)
-{
-    std::normal_distribution<double> g;
-    const double x = g(rng), y = g(rng), z = g(rng), n = std::sqrt(x * x + y * y + z * z);
-    return {T(x / n), T(y / n), T(z / n)};
-}
-
 // `spawns` secondary rays from hits of random primary rays; returns the number of false re-hits.
 template <class Policy, class Prim>
 int false_self_hits(Policy policy, const Prim& prim, int spawns, std::uint64_t seed, bool check_inward_chord, bool flat = false)
 {
     using T = scalar_t<Prim>;
-    std::mt19937_64 rng(seed);
-    std::uniform_real_distribution<double> u(-1, 1), lg(-3, 3);
+    Random random(seed);
     int made = 0, bad = 0;
     while (made < spawns) {
-        const Vec3<T> o = T(4) * random_unit<T>(rng);
-        const Vec3<T> aim{T(u(rng)), T(u(rng)), T(u(rng))};
+        const Vec3<T> o = T(4) * scalar_cast<T>(random.unit_vector());
+        const double ax = random.uniform(-1, 1), ay = random.uniform(-1, 1), az = random.uniform(-1, 1);
+        const Vec3<T> aim{T(ax), T(ay), T(az)};
         const auto h = intersect(policy, Ray<T>{o, aim - o}, prim);
         if (!h) continue;
         for (int k = 0; k < 8 && made < spawns; ++k, ++made) {
-            Vec3<T> w = random_unit<T>(rng);
-            const T scale = T(std::pow(10.0, lg(rng)));  // direction length must not matter
+            Vec3<T> w = scalar_cast<T>(random.unit_vector());
+            const T scale = T(std::pow(10.0, random.uniform(-3, 3)));  // direction length must not matter
             // Away from the surface, on the side the primary ray came from (outward for a convex solid hit from outside).
             if (dot(w, h->normal) < T(0)) w = -w;
             const Ray<T> out = spawn(*h, scale * w);

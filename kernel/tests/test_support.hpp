@@ -1,18 +1,41 @@
-// Shared by the kernel tests: the float/double × policy grid and small helpers.
+// Shared by the kernel tests: the float/double × policy grid, a random generator and small helpers.
 #pragma once
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <limits>
 #include <optional>
+#include <random>
 #include <string>
 #include <type_traits>
 
 #include <rayq/rayq.hpp>
 
 namespace rayq::test {
+
+// The random draws the tests build primitives and rays from (seeded: every run draws the same).
+struct Random {
+    std::mt19937_64 rng;
+    explicit Random(std::uint64_t seed) : rng(seed) {}
+
+    double uniform(double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); }
+    double log_uniform(double lo, double hi) { return std::pow(10.0, uniform(std::log10(lo), std::log10(hi))); }
+    // Uniform on the sphere: three normal deviates, normalized.
+    Vec3<double> unit_vector()
+    {
+        std::normal_distribution<double> n;
+        const Vec3<double> v{n(rng), n(rng), n(rng)};
+        return v / length(v);
+    }
+    Vec3<double> perpendicular(const Vec3<double>& a)
+    {
+        const Vec3<double> p = cross(a, unit_vector());
+        return p / length(p);
+    }
+};
 
 template <class T_, class Policy_>
 struct Config {
