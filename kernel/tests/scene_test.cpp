@@ -19,7 +19,6 @@ TYPED_TEST_SUITE(SceneTest, AllConfigs, ConfigNames);
 template <class T>
 struct World : Random {
     using Random::Random;
-    Vec3<T> cast(const Vec3<double>& v) { return scalar_cast<T>(v); }
 
     // Spheres of mixed sizes spread over a box, a few invalid ones among them.
     Sphere<T> sphere(double extent)
@@ -29,7 +28,7 @@ struct World : Random {
         double r = log_uniform(1e-3, 0.2) * extent;
         if (pick < 0.03) r = -r;                                           // invalid: negative radius
         if (pick > 0.97) r = std::numeric_limits<double>::quiet_NaN();     // invalid: NaN
-        return {cast(c), T(r)};
+        return {scalar_cast<T>(c), T(r)};
     }
 
     // A ray chosen to stress the filter: aimed near the outline of one of the spheres (relative
@@ -60,7 +59,7 @@ struct World : Random {
             const bool single = std::is_same_v<T, float>;
             d = d / length(d) * log_uniform(single ? 1e-25 : 1e-165, single ? 1e-15 : 1e-145);
         }
-        Ray<T> out{cast(o), cast(d)};
+        Ray<T> out{scalar_cast<T>(o), scalar_cast<T>(d)};
         if (kind == 5 || uniform(0, 1) < 0.2) {  // a window that may end just before or after a hit
             const auto h = intersect(stable, out, s);
             if (h) out.tmax = std::nextafter(h->t, uniform(0, 1) < 0.5 ? T(0) : std::numeric_limits<T>::infinity());
@@ -159,10 +158,10 @@ TYPED_TEST(SceneTest, EqualsTheScalarQueriesOverEveryPrimitive)
             spheres.push_back(w.sphere(10.0));
             EXPECT_EQ(scene.add(spheres.back()), spheres.size() - 1);
             if (i % 3 == 0) {
-                const Vec3<T> a = w.cast(w.unit_vector() * 8.0), b = a + w.cast(w.unit_vector() * w.uniform(0.5, 3));
+                const Vec3<T> a = scalar_cast<T>(w.unit_vector() * 8.0), b = a + scalar_cast<T>(w.unit_vector() * w.uniform(0.5, 3));
                 cylinders.push_back({a, b, T(w.log_uniform(0.05, 1)), i % 2 == 0 ? Caps::both : Caps::none});
                 scene.add(cylinders.back());
-                triangles.push_back({w.cast(w.unit_vector() * 9.0), w.cast(w.unit_vector() * 9.0), w.cast(w.unit_vector() * 9.0)});
+                triangles.push_back({scalar_cast<T>(w.unit_vector() * 9.0), scalar_cast<T>(w.unit_vector() * 9.0), scalar_cast<T>(w.unit_vector() * 9.0)});
                 scene.add(triangles.back());
             }
         }
@@ -206,7 +205,7 @@ TYPED_TEST(SceneTest, CylinderScenesEqualTheScalarQueries)
         for (int i = 0; i < scene_n; ++i) {
             const Vec3<double> a = w.unit_vector() * w.uniform(0, 6), axis = w.unit_vector() * w.uniform(0.2, 3);
             const bool aligned = i % 5 == 1;  // axis along z: rays along z are parallel, along x perpendicular
-            Cylinder<T> c{w.cast(a), w.cast(aligned ? a + Vec3<double>{0, 0, 2} : a + axis), T(w.log_uniform(0.05, 1.5)),
+            Cylinder<T> c{scalar_cast<T>(a), scalar_cast<T>(aligned ? a + Vec3<double>{0, 0, 2} : a + axis), T(w.log_uniform(0.05, 1.5)),
                           i % 4 == 3 ? Caps::none : Caps::both};
             if (i % 11 == 7) c.radius = -c.radius;  // invalid: kept, never hit
             if (i % 13 == 12) c = cylinders.front();  // a tie: the first copy wins
@@ -231,7 +230,7 @@ TYPED_TEST(SceneTest, CylinderScenesEqualTheScalarQueries)
             if (kind == 2) d = Vec3<double>{1, 0, 0};                                    // across them
             Vec3<double> o = target - d * w.uniform(0, 20);
             if (kind == 3) o = target;  // from on or inside the surface
-            Ray<T> ray{w.cast(o), w.cast(d)};
+            Ray<T> ray{scalar_cast<T>(o), scalar_cast<T>(d)};
             if (kind == 4) {  // a window that ends just before or after a scalar hit
                 std::optional<SceneHit<T>> first;
                 brute(stable, ray, cylinders, 0, first);

@@ -19,8 +19,7 @@ int false_self_hits(Policy policy, const Prim& prim, int spawns, std::uint64_t s
     int made = 0, bad = 0;
     while (made < spawns) {
         const Vec3<T> o = T(4) * scalar_cast<T>(random.unit_vector());
-        const double ax = random.uniform(-1, 1), ay = random.uniform(-1, 1), az = random.uniform(-1, 1);
-        const Vec3<T> aim{T(ax), T(ay), T(az)};
+        const Vec3<T> aim{T(random.uniform(-1, 1)), T(random.uniform(-1, 1)), T(random.uniform(-1, 1))};  // braces: drawn in order
         const auto h = intersect(policy, Ray<T>{o, aim - o}, prim);
         if (!h) continue;
         for (int k = 0; k < 8 && made < spawns; ++k, ++made) {

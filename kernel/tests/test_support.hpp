@@ -27,14 +27,9 @@ struct Random {
     Vec3<double> unit_vector()
     {
         std::normal_distribution<double> n;
-        const Vec3<double> v{n(rng), n(rng), n(rng)};
-        return v / length(v);
+        return normalize(Vec3<double>{n(rng), n(rng), n(rng)});  // braces: drawn in order
     }
-    Vec3<double> perpendicular(const Vec3<double>& a)
-    {
-        const Vec3<double> p = cross(a, unit_vector());
-        return p / length(p);
-    }
+    Vec3<double> perpendicular(const Vec3<double>& a) { return normalize(cross(a, unit_vector())); }
 };
 
 template <class T_, class Policy_>
