@@ -118,15 +118,33 @@ inline void each_length(S& c, F&& f)
     f(c.p0), f(c.p1), f(c.radius);
 }
 
-// Forced inline: see detail::unit().
+// Forced inline: see detail::unit(). The part picked by bit masks: cap or side is a coin toss per
+// hit, which GCC compiled as jumps (16 capped cylinders, `fast`, point and normal, rays that hit,
+// ns per ray, medians of 16 alternated runs: 66.2 -> 64.1).
 template <class T>
 RAYQ_INLINE Vec3<T> outward_normal(const Cylinder<T>& cyl, const Vec3<T>& p, Part part)
 {
     const Vec3<T> axis = cyl.p1 - cyl.p0;
-    if (part == Part::cap0) return -axis;
-    if (part == Part::cap1) return axis;
     const Vec3<T> q = detail::offset_from_nearer_end(p, cyl.p0, cyl.p1);
-    return q - (dot(q, axis) / dot(axis, axis)) * axis;  // the radial component
+    const Vec3<T> radial = q - (dot(q, axis) / dot(axis, axis)) * axis;
+    return detail::pick(part == Part::surface, radial, detail::pick(part == Part::cap0, -axis, axis));
+}
+
+// The same at the ray's point t, from t rather than the point: q × A is linear in t, q = o − p0 +
+// t·d, and A × (q × A) = |A|²·(q's radial component). From t that is one multiply-add and a cross
+// product, where the point form waits for the point, its nearer end, a dot product and a division
+// (16 capped cylinders, `fast`, point and normal, ns per ray, medians of 16 alternated runs: rays
+// that hit 64.1 -> 61.9, all rays 25.6 -> 24.9). Its rounding, ~ε·|o − p0|·|A|² against a result
+// of r·|A|², is of the order of the rounded point's own (ε·|p| against r: pbrt-v4, "Managing
+// Rounding Error"). Where |A|²·r leaves unit()'s direct range (huge or tiny cylinders, or an
+// overflow on the way), the point form.
+template <class T>
+RAYQ_INLINE Vec3<T> outward_normal_on_ray(const Cylinder<T>& cyl, const Ray<T>& ray, T t, const Vec3<T>& p, Part part)
+{
+    const Vec3<T> axis = cyl.p1 - cyl.p0;
+    const Vec3<T> radial = cross(axis, cross(ray.origin - cyl.p0, axis) + t * cross(ray.direction, axis));
+    if (!detail::unscaled_unit(radial)) return outward_normal(cyl, p, part);
+    return detail::pick(part == Part::surface, radial, detail::pick(part == Part::cap0, -axis, axis));
 }
 
 }  // namespace rayq

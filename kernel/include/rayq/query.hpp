@@ -7,6 +7,9 @@
 //                                       (optionally with a trailing limit: at most that many, the
 //                                       first ones in the window — for closest and any hit);
 //   outward_normal(prim, point, part)   the outward normal (any length) at a hit point;
+//   outward_normal_on_ray(prim, ray, t, point, part)
+//                                       optional: the same at the ray's point t (point, rounded),
+//                                       where a form in t is shorter than one from the point;
 //   validate(prim)                      whether the primitive is usable;
 // and specializes is_primitive. The queries below are written once for all of them: the
 // cheap core (crossings) is shared, and only intersect() builds the full hit record.
@@ -146,6 +149,14 @@ inline HitBounds<scalar_t<Prim>> certify_hit(Policy, const Ray<scalar_t<Prim>>& 
              saturated[2] ? inf : axis_error(ray.origin.z, ray.direction.z)}};
 }
 
+// The outward normal at ray(t), whose rounded value is p: a primitive with a shorter form in t
+// supplies its own (cylinder.hpp); the others take their normal at p.
+template <class Prim, class T>
+RAYQ_INLINE Vec3<T> outward_normal_on_ray(const Prim& prim, const Ray<T>&, T, const Vec3<T>& p, Part part)
+{
+    return outward_normal(prim, p, part);
+}
+
 // The hit record of crossing c, with the fields asked for. Forced inline, its rare parts
 // (facing_ray, certify_hit) out of line: GCC had called the whole record out of line from a
 // scene's closest hit (16 capped cylinders under `fast`, point and normal: 18% of the samples in
@@ -171,7 +182,7 @@ RAYQ_INLINE void write_hit(Policy policy, const Ray<scalar_t<Prim>>& ray, const 
     const Vec3<T> p{saturate(point.x), saturate(point.y), saturate(point.z)};
     if (wants(fields, HitFields::point)) h.point = p;
     if (wants(fields, HitFields::normal)) {
-        Vec3<T> n = unit(outward_normal(prim, p, c.part));
+        Vec3<T> n = unit(outward_normal_on_ray(prim, ray, c.t, p, c.part));
         // Face the incoming ray: outward where it enters, inward where it leaves. The side comes from
         // the crossing (the root order; exact under the accurate policy), not from the sign of
         // dot(n, d), which is noise at grazing incidence.

@@ -48,6 +48,15 @@ inline Vec3<T> point_at(Policy, const Vec3<T>& origin, const Vec3<T>& direction,
     else return origin + t * direction;
 }
 
+// Whether unit(v) below takes its direct path: |v|² finite and far above the subnormals.
+template <class T>
+RAYQ_INLINE bool unscaled_unit(const Vec3<T>& v)
+{
+    const T dd = rayq::dot(v, v);
+    constexpr T smallest_unscaled = std::numeric_limits<T>::min() / (std::numeric_limits<T>::epsilon() * std::numeric_limits<T>::epsilon());
+    return dd >= smallest_unscaled && dd <= std::numeric_limits<T>::max();
+}
+
 // Unit vector along v. Returns {0,0,0} for a zero or non-finite v.
 // Where |v|² is finite and far above the subnormals (squares too small to count may underflow:
 // they lose less than an ulp of |v|²), v times 1/|v|: one division instead of six, and each
@@ -62,9 +71,7 @@ inline Vec3<T> point_at(Policy, const Vec3<T>& origin, const Vec3<T>& direction,
 template <class T>
 RAYQ_INLINE Vec3<T> unit(const Vec3<T>& v)
 {
-    const T dd = rayq::dot(v, v);
-    constexpr T smallest_unscaled = std::numeric_limits<T>::min() / (std::numeric_limits<T>::epsilon() * std::numeric_limits<T>::epsilon());
-    if (dd >= smallest_unscaled && dd <= std::numeric_limits<T>::max()) return v * (T(1) / std::sqrt(dd));
+    if (unscaled_unit(v)) return v * (T(1) / std::sqrt(rayq::dot(v, v)));
     // Every component checked: std::max skips a NaN that is not first (NaN < x is false).
     if (!(std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z))) return {T(0), T(0), T(0)};
     const T m = std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});

@@ -11,6 +11,7 @@
 #include "../quadratic.hpp"
 #include "../ray.hpp"
 #include "policy_ops.hpp"
+#include "ulp.hpp"
 
 namespace rayq::detail {
 
@@ -41,12 +42,13 @@ inline Margins<N> axial_trim_margins(const Vec3<N>& p0, const Vec3<N>& p1, N r0,
 // ~ε·|q|, which near an end (a cone's apex above all) would swamp it. Both give the same radial
 // part exactly (p1 − p0 is along the axis). A point 1e-28 from the apex of a cone of size 0.02
 // got a normal 56° off from p − p0 (axial libFuzzer harness; CGAL's normal).
-// Forced inline: GCC called it out of line from a scene's inlined hit record.
+// Forced inline: GCC called it out of line from a scene's inlined hit record. Picked by bit masks:
+// which end is nearer is a coin toss per hit.
 template <class T>
 RAYQ_INLINE Vec3<T> offset_from_nearer_end(const Vec3<T>& p, const Vec3<T>& p0, const Vec3<T>& p1)
 {
     const Vec3<T> q0 = p - p0, q1 = p - p1;
-    return norm1(q1) < norm1(q0) ? q1 : q0;
+    return pick(norm1(q1) < norm1(q0), q1, q0);
 }
 
 // Every finite end of every span is a crossing of the surface.
