@@ -1,5 +1,6 @@
-// rayq — the neighbouring floats, and picks by bit masks, inline. std::nextafter is an out-of-line libm call (several ns),
-// and the accurate policy and scene searches step by one ulp on their hot paths.
+// rayq — the neighbouring floats, and picks by bit masks, inline. std::nextafter is an
+// out-of-line libm call (several ns), and the accurate policy and scene searches step by one ulp
+// on their hot paths.
 #pragma once
 
 #include <cmath>
@@ -33,7 +34,7 @@ RAYQ_INLINE T from_bits(Bits b)
 }
 // c ? a : b by bit masks, never a jump: for choices a branch predictor cannot learn, as which end
 // of a cylinder or cone a hit lies nearer, or whether it hit a cap or the side (GCC compiled both
-// as jumps, mispredicted on about half the hits).
+// as jumps; of a 16-capped-cylinder scene's hits, 34% are on caps).
 template <class T>
 RAYQ_INLINE T pick(bool c, T a, T b)
 {
