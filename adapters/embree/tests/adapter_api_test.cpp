@@ -90,6 +90,37 @@ TEST(EmbreeApi, FtzDazIsOffInsideCallbacksAndRestored)
     EXPECT_EQ(during & 0x8040u, 0x8040u);
 }
 
+// The record is built in IEEE arithmetic too, not only the callbacks' decisions: a hit whose point
+// has a subnormal coordinate (DAZ would read it as 0) gets the normal rayq computes with gradual
+// underflow. And a QueryContext keeps FTZ/DAZ off while it lives, restoring the caller's mode.
+TEST(EmbreeApi, FtzDazIsOffForTheWholeQueryRecordIncluded)
+{
+    const Sphere<float> tiny{{0, 0, 0}, 2e-38f};
+    const Ray<float> ray{{1e-39f, 0, -1e-37f}, {0, 0, 1}};  // x subnormal: the normal's x is about 0.05
+    const auto expected = rayq::intersect(rayq::accurate, ray, tiny);
+    ASSERT_TRUE(expected.has_value());
+    ASSERT_GT(expected->normal.x, 0.01f);
+    ASSERT_LT(expected->normal.x, 0.1f);
+    const rayq::embree::Scene<Sphere<float>, rayq::accurate_policy> scene({tiny});
+    const unsigned saved = _mm_getcsr();
+    _mm_setcsr(saved | 0x8040u);
+    const auto hit = scene.intersect(ray);
+    unsigned inside = 0;
+    {
+        rayq::embree::QueryContext<float> ctx(ray);
+        inside = _mm_getcsr();
+    }
+    const unsigned after = _mm_getcsr();
+    _mm_setcsr(saved);
+    ASSERT_TRUE(hit.has_value());
+    EXPECT_EQ(hit->hit.t, expected->t);
+    EXPECT_EQ(hit->hit.normal.x, expected->normal.x);
+    EXPECT_EQ(hit->hit.normal.z, expected->normal.z);
+    EXPECT_EQ(hit->hit.t_error, expected->t_error);
+    EXPECT_EQ(inside & 0x8040u, 0u);
+    EXPECT_EQ(after & 0x8040u, 0x8040u);
+}
+
 // A user's own Embree scene: a rayq geometry next to a native Embree triangle, one context.
 TEST(EmbreeApi, UserGeometryInAnEmbreeSceneWithNativeGeometry)
 {
