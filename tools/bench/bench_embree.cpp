@@ -9,7 +9,8 @@
 //   embree_round_curve    Embree's RTC_GEOMETRY_TYPE_ROUND_LINEAR_CURVE (a capsule: round ends,
 //                         not the same shape; the speed of Embree's other cylinder-like primitive)
 //   rayq_embree_<policy>  rayq in Embree: rayq::embree::Scene (user geometry, Embree's BVH culls)
-//                         with rayq's full hit record; _nearest: t and primID only (Scene::nearest)
+//                         with rayq's full hit record; _shading: point and normal (below);
+//                         _nearest: t and primID only (Scene::nearest)
 //   rayq_scene_<policy>   rayq's compile-time scene rayq::Scene<rayq::Sphere<float>> (or
 //                         Cylinder<float>): brute force with the SIMD sphere filter (N <= 1,000)
 //   rayq_loop_<policy>    the plain scalar loop: rayq::intersect over a std::vector (N <= 16)
@@ -21,7 +22,7 @@
 // for _shading point and normal).
 //
 // FTZ/DAZ are set for the whole run, as Embree recommends (--ftz=0: off); the rayq adapter switches them off
-// inside its callbacks (rayq's certified arithmetic needs gradual underflow), which it pays for, and
+// for each query (rayq's certified arithmetic needs gradual underflow), which it pays for, and
 // the rayq_scene and rayq_loop variants run with them off, as rayq's users must (with DAZ on, the
 // certified bounds do not hold; it also hides what subnormal operands cost: see grow() in
 // detail/bounded.hpp).
@@ -289,7 +290,8 @@ void run_native(benchmark::State& state, const std::string& key, const std::func
 }
 
 template <class Prim, class Policy>
-void run_adapter(benchmark::State& state, const std::string& key, const std::vector<Prim>& prims, Policy policy, bool record = true)
+void run_adapter(benchmark::State& state, const std::string& key, const std::vector<Prim>& prims, Policy policy, bool record = true,
+                 rayq::HitFields fields = rayq::HitFields::all)
 {
     using Adapter = rayq::embree::Scene<Prim, Policy>;
     double build = 0;
@@ -303,7 +305,7 @@ void run_adapter(benchmark::State& state, const std::string& key, const std::vec
         hits = 0;
         if (record) {
             for (const Ray& r : the_rays()) {
-                const auto h = scene.intersect(r);
+                const auto h = scene.intersect(r, fields);
                 hits += h.has_value();
                 benchmark::DoNotOptimize(h);
             }
@@ -398,7 +400,12 @@ void register_all()
             reg(name, [=](benchmark::State& st) { run_adapter(st, name, *prims, policy); });
         };
         adapter(rayq::stable), adapter(rayq::accurate);
-        // t and primID only (no normal, no certified bound), as Embree's native hits give.
+        // Point and normal, no certified bounds: the record Embree's native hits give.
+        const std::string shading_name = "sphere/rayq_embree_stable_shading" + tail;
+        reg(shading_name, [=](benchmark::State& st) {
+            run_adapter(st, shading_name, *prims, rayq::stable, true, rayq::HitFields::point | rayq::HitFields::normal);
+        });
+        // t and primID only (no normal, no certified bound).
         const std::string nearest_name = "sphere/rayq_embree_stable_nearest" + tail;
         reg(nearest_name, [=](benchmark::State& st) { run_adapter(st, nearest_name, *prims, rayq::stable, false); });
         if (n <= 1000) {

@@ -119,6 +119,13 @@ TEST(EmbreeApi, FtzDazIsOffForTheWholeQueryRecordIncluded)
     EXPECT_EQ(hit->hit.t_error, expected->t_error);
     EXPECT_EQ(inside & 0x8040u, 0u);
     EXPECT_EQ(after & 0x8040u, 0x8040u);
+    // The record asked for directly, outside any query, under the caller's FTZ/DAZ.
+    _mm_setcsr(saved | 0x8040u);
+    const auto direct = scene.geometry().hit_record(ray, 0);
+    _mm_setcsr(saved);
+    ASSERT_TRUE(direct.has_value());
+    EXPECT_EQ(direct->normal.x, expected->normal.x);
+    EXPECT_EQ(direct->t_error, expected->t_error);
 }
 
 // A user's own Embree scene: a rayq geometry next to a native Embree triangle, one context.

@@ -237,9 +237,10 @@ public:
     Policy policy() const { return policy_; }
 
     // rayq's hit record for primitive primID on `ray` (what the scalar intersect gives), with the
-    // fields asked for.
+    // fields asked for. Both overloads build it with FTZ/DAZ off, whatever the caller's mode.
     std::optional<Hit<T>> hit_record(const Ray<T>& ray, unsigned primID, HitFields fields = HitFields::all) const
     {
+        [[maybe_unused]] detail::IeeeArithmetic ieee;
         return ::rayq::intersect(policy_, ray, primitives_.at(primID), fields);
     }
 
@@ -253,6 +254,7 @@ public:
     {
         if (!found.found() || found.geomID != geomID_) return std::nullopt;
         if (!found.crossing_is_first) return hit_record(found.ray, found.primID, fields);
+        [[maybe_unused]] detail::IeeeArithmetic ieee;  // (off already while `found` lives on this thread)
         return ::rayq::detail::first_hit(policy_, found.ray, primitives_.at(found.primID), found.crossing, false, fields);
     }
 
