@@ -6,6 +6,9 @@
 //   embree_points         Embree's native spheres (RTC_GEOMETRY_TYPE_SPHERE_POINT)
 //   embree_mesh           Embree on UV-sphere triangle meshes (10 rings × 10 segments: 180 triangles)
 //   embree_cone_curve     Embree's RTC_GEOMETRY_TYPE_CONE_LINEAR_CURVE (one segment per cylinder)
+//   embree_user_plain     Embree user geometry with the textbook float sphere test as its callback,
+//                         on the adapter's boxes and leaf size: the floor under any user-geometry
+//                         adapter (no rayq)
 //   embree_round_curve    Embree's RTC_GEOMETRY_TYPE_ROUND_LINEAR_CURVE (a capsule: round ends,
 //                         not the same shape; the speed of Embree's other cylinder-like primitive)
 //   rayq_embree_<policy>  rayq in Embree: rayq::embree::Scene (user geometry, Embree's BVH culls)
@@ -270,10 +273,65 @@ void finish(benchmark::State& state, std::size_t hits, double build_seconds)
     state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * kRays));
 }
 
-void run_native(benchmark::State& state, const std::string& key, const std::function<std::shared_ptr<NativeScene>()>& make)
+// Embree user geometry whose callback is the textbook float sphere test (no rayq), on the rayq
+// adapter's boxes and leaf size: what Embree's callbacks and object BVH cost by themselves, the
+// floor under any user-geometry adapter (rayq_embree_* against it: what rayq's decisions add).
+struct PlainUserSpheres {
+    RTCDevice device = nullptr;
+    RTCScene scene = nullptr;
+    std::vector<Sphere> spheres;
+    std::vector<RTCBounds> boxes;
+
+    explicit PlainUserSpheres(const std::vector<Sphere>& prims) : spheres(prims)
+    {
+        for (const Sphere& p : spheres) boxes.push_back(rayq::embree::embree_bounds<rayq::stable_policy>(p, 0));
+        const std::string config = "threads=1,object_accel_max_leaf_size=" + std::to_string(rayq::embree::automatic_max_leaf_size(prims.size()));
+        device = rtcNewDevice(config.c_str());
+        if (!device) throw std::runtime_error("rtcNewDevice failed");
+        scene = rtcNewScene(device);
+        RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
+        rtcSetGeometryUserPrimitiveCount(g, static_cast<unsigned>(spheres.size()));
+        rtcSetGeometryUserData(g, this);
+        rtcSetGeometryBoundsFunction(g, [](const RTCBoundsFunctionArguments* a) {
+            *a->bounds_o = static_cast<const PlainUserSpheres*>(a->geometryUserPtr)->boxes[a->primID];
+        }, nullptr);
+        rtcSetGeometryIntersectFunction(g, [](const RTCIntersectFunctionNArguments* a) {
+            const Sphere& s = static_cast<const PlainUserSpheres*>(a->geometryUserPtr)->spheres[a->primID];
+            RTCRayHit& rh = *reinterpret_cast<RTCRayHit*>(a->rayhit);
+            const rayq::Vec3<float> o{rh.ray.org_x, rh.ray.org_y, rh.ray.org_z}, d{rh.ray.dir_x, rh.ray.dir_y, rh.ray.dir_z};
+            const rayq::Vec3<float> u = o - s.center;
+            const float a2 = rayq::dot(d, d), b = rayq::dot(u, d), disc = b * b - a2 * (rayq::dot(u, u) - s.radius * s.radius);
+            if (!(disc >= 0)) return;
+            const float root = std::sqrt(disc), t0 = (-b - root) / a2, t = t0 > rh.ray.tnear ? t0 : (-b + root) / a2;
+            if (!(t > rh.ray.tnear && t < rh.ray.tfar)) return;
+            const rayq::Vec3<float> n = u + t * d;
+            rh.ray.tfar = t;
+            rh.hit.Ng_x = n.x, rh.hit.Ng_y = n.y, rh.hit.Ng_z = n.z;
+            rh.hit.u = rh.hit.v = 0;
+            rh.hit.primID = a->primID, rh.hit.geomID = a->geomID, rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+        });
+        rtcCommitGeometry(g);
+        rtcAttachGeometry(scene, g);
+        rtcReleaseGeometry(g);
+        rtcCommitScene(scene);
+        if (rtcGetDeviceError(device) != RTC_ERROR_NONE) throw std::runtime_error("Embree: building the scene failed");
+    }
+    PlainUserSpheres(const PlainUserSpheres&) = delete;
+    PlainUserSpheres& operator=(const PlainUserSpheres&) = delete;
+    ~PlainUserSpheres()
+    {
+        rtcReleaseScene(scene);
+        rtcReleaseDevice(device);
+    }
+};
+
+// make: returns a std::shared_ptr to a NativeScene, or to anything else with an Embree `scene`.
+template <class Make>
+void run_native(benchmark::State& state, const std::string& key, const Make& make)
 {
+    using Built = typename decltype(make())::element_type;
     double build = 0;
-    NativeScene& scene = cached<NativeScene>(key, make, build);
+    Built& scene = cached<Built>(key, make, build);
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
     std::size_t hits = 0;
@@ -394,6 +452,9 @@ void register_all()
         });
         reg("sphere/embree_mesh" + tail, [=](benchmark::State& st) {
             run_native(st, "mesh" + tail, [=] { return std::shared_ptr<NativeScene>(native_mesh(*prims)); });
+        });
+        reg("sphere/embree_user_plain" + tail, [=](benchmark::State& st) {
+            run_native(st, "user_plain" + tail, [=] { return std::make_shared<PlainUserSpheres>(*prims); });
         });
         const auto adapter = [&](auto policy) {
             const std::string name = std::string("sphere/rayq_embree_") + policy_name(policy) + tail;

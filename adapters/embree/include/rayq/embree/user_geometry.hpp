@@ -80,6 +80,9 @@ struct Options {
     unsigned max_leaf_size = 0;
 };
 
+// Options::max_leaf_size's automatic choice for a scene of n primitives (see there).
+inline unsigned automatic_max_leaf_size(std::size_t n) { return n < 32768 ? 1 : 3; }
+
 namespace detail {
 
 // Switches flush-to-zero and denormals-are-zero off for its lifetime (rayq's error-free
@@ -402,7 +405,7 @@ public:
     explicit Scene(std::vector<Prim> primitives, Policy policy = {}, const Options& options = {})
     {
         std::string config = options.device_config ? options.device_config : "";
-        const unsigned leaf = options.max_leaf_size > 0 ? options.max_leaf_size : primitives.size() < 32768 ? 1 : 3;
+        const unsigned leaf = options.max_leaf_size > 0 ? options.max_leaf_size : automatic_max_leaf_size(primitives.size());
         config = "object_accel_max_leaf_size=" + std::to_string(leaf) + (config.empty() ? "" : "," + config);
         device_ = rtcNewDevice(config.c_str());
         if (!device_) throw std::runtime_error("rayq::embree: rtcNewDevice failed (error " + std::to_string(rtcGetDeviceError(nullptr)) + ")");
