@@ -39,6 +39,15 @@
 // --answers_in=FILE --answers_out=FILE (optional) answer given cases with Embree's native sphere,
 // for rayq-validate's speed campaign, which measures the answers against the exact oracle on the
 // oracle campaign's own float sphere cases (write_answers below has the format).
+//
+// --rounds=N (optional, N >= 2) runs the selected benchmarks N times ("rounds", one repetition
+// each; add --benchmark_enable_random_interleaving=true to shuffle them within a round) and prints,
+// per benchmark, the median time and the median and range of its ratio to Embree's native row of
+// the same scene in the same round (rays/s over rays/s: sphere/embree_points/N, or
+// cylinder/embree_cone_curve/N; select that row too). This machine's slow phases last from seconds
+// to minutes and hurt some rows more than others (README, session 47), so a ratio of two rows
+// measured minutes apart, as medians of repetitions may be, can move by 30%; ratios taken round by
+// round, then their median, are what the issue-7 table reports.
 #include <benchmark/benchmark.h>
 #include <rayq/embree.hpp>
 #include <rayq/rayq.hpp>
@@ -56,6 +65,7 @@
 #include <cstring>
 #include <fstream>
 #include <functional>
+#include <map>
 #include <memory>
 #include <random>
 #include <sstream>
@@ -694,14 +704,67 @@ void write_answers(const std::string& in_path, const std::string& out_path)
 
 }  // namespace
 
+// --rounds: collects each round's times (ms per iteration over kRays rays), printing nothing.
+class RoundCollector : public benchmark::BenchmarkReporter {
+public:
+    std::map<std::string, std::vector<double>> ms;  // benchmark -> one time per round
+
+    bool ReportContext(const Context&) override { return true; }
+    void ReportRuns(const std::vector<Run>& runs) override
+    {
+        for (const Run& r : runs)
+            if (r.run_type == Run::RT_Iteration && !r.error_occurred)
+                ms[r.benchmark_name()].push_back(r.GetAdjustedRealTime() * benchmark::GetTimeUnitMultiplier(benchmark::kMillisecond) /
+                                                 benchmark::GetTimeUnitMultiplier(r.time_unit));
+    }
+};
+
+double median(std::vector<double> v)
+{
+    std::sort(v.begin(), v.end());
+    const std::size_t m = v.size() / 2;
+    return v.size() % 2 ? v[m] : (v[m - 1] + v[m]) / 2;
+}
+
+// Embree's native row of the scene `name` (<prim>/<variant>/<N>) belongs to, or "" for none.
+std::string embree_row_of(const std::string& name)
+{
+    const auto first = name.find('/'), last = name.rfind('/');
+    if (first == std::string::npos || last == first) return "";
+    const std::string prim = name.substr(0, first);
+    const char* native = prim == "sphere" ? "embree_points" : prim == "cylinder" ? "embree_cone_curve" : nullptr;
+    return native ? prim + "/" + native + name.substr(last) : "";
+}
+
+int run_rounds(int rounds)
+{
+    RoundCollector collect;
+    for (int r = 0; r < rounds; ++r) benchmark::RunSpecifiedBenchmarks(&collect);
+    std::printf("%-48s %10s  %s\n", "benchmark", "median ms", "over Embree's native row, same round: median [min-max]");
+    for (const auto& [name, times] : collect.ms) {
+        std::printf("%-48s %10.3f", name.c_str(), median(times));
+        const auto ref = collect.ms.find(embree_row_of(name));
+        if (ref != collect.ms.end() && ref->first != name && ref->second.size() == times.size()) {
+            std::vector<double> ratio;
+            for (std::size_t i = 0; i < times.size(); ++i) ratio.push_back(ref->second[i] / times[i]);
+            std::printf("  %.3fx [%.3f-%.3f]", median(ratio), *std::min_element(ratio.begin(), ratio.end()),
+                        *std::max_element(ratio.begin(), ratio.end()));
+        }
+        std::printf("\n");
+    }
+    std::printf("(%d rounds)\n", rounds);
+    return 0;
+}
+
 int main(int argc, char** argv)
 {
-    // Embree's recommendation for speed (DEPENDENCIES.md); the rayq adapter restores IEEE mode in
-    // its callbacks.
+    // Embree's recommendation for speed (DEPENDENCIES.md); the rayq adapter restores IEEE mode for
+    // each query.
     // --ftz=0 leaves them off (to measure what the adapter's switching costs).
     bool ftz = true;
     std::string accuracy_out, answers_in, answers_out;
     std::size_t accuracy_cases = 20000;
+    int rounds = 0;
     std::vector<char*> args;
     for (int i = 0; i < argc; ++i) {
         const std::string a = argv[i];
@@ -710,7 +773,15 @@ int main(int argc, char** argv)
         else if (a.rfind("--answers_in=", 0) == 0) answers_in = a.substr(13);
         else if (a.rfind("--answers_out=", 0) == 0) answers_out = a.substr(14);
         else if (a == "--ftz=0" || a == "--ftz=1") ftz = a == "--ftz=1";
-        else args.push_back(argv[i]);
+        else if (a.rfind("--rounds=", 0) == 0) {
+            char* end = nullptr;
+            const long v = std::strtol(a.c_str() + 9, &end, 10);
+            if (*end || v < 2 || v > 1000) {
+                std::fprintf(stderr, "rayq-bench-embree: --rounds expects a whole number from 2 to 1000, got '%s'\n", a.c_str() + 9);
+                return 2;
+            }
+            rounds = static_cast<int>(v);
+        } else args.push_back(argv[i]);
     }
     if (ftz) {
         _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
@@ -741,7 +812,7 @@ int main(int argc, char** argv)
         benchmark::AddCustomContext("accuracy_json", accuracy_out);
     }
     register_all();
-    benchmark::RunSpecifiedBenchmarks();
+    const int status = rounds > 0 ? run_rounds(rounds) : (benchmark::RunSpecifiedBenchmarks(), 0);
     benchmark::Shutdown();
-    return 0;
+    return status;
 }
