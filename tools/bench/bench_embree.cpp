@@ -702,8 +702,6 @@ void write_answers(const std::string& in_path, const std::string& out_path)
     if (!out) throw std::runtime_error("cannot write " + out_path);
 }
 
-}  // namespace
-
 // --rounds: collects each round's times (ms per iteration over kRays rays), printing nothing.
 class RoundCollector : public benchmark::BenchmarkReporter {
 public:
@@ -755,6 +753,8 @@ int run_rounds(int rounds)
     std::printf("(%d rounds)\n", rounds);
     return 0;
 }
+
+}  // namespace
 
 int main(int argc, char** argv)
 {
