@@ -151,7 +151,7 @@ RAYQ_INLINE Vec3<T> outward_normal_on_ray(const Cylinder<T>& cyl, const Ray<T>& 
 {
     const Vec3<T> axis = cyl.p1 - cyl.p0;
     const Vec3<T> radial = cross(axis, cross(ray.origin - cyl.p0, axis) + t * cross(ray.direction, axis));
-    if (!detail::unscaled_unit(radial)) return outward_normal(cyl, p, part);
+    if (!detail::unscaled_unit(dot(radial, radial))) return outward_normal(cyl, p, part);
     return detail::side_or_cap(part, radial, axis);
 }
 

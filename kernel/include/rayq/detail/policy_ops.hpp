@@ -48,11 +48,11 @@ inline Vec3<T> point_at(Policy, const Vec3<T>& origin, const Vec3<T>& direction,
     else return origin + t * direction;
 }
 
-// Whether unit(v) below takes its direct path: |v|² finite and far above the subnormals.
+// Whether unit() below takes its direct path for a vector of squared length dd: finite and far
+// above the subnormals.
 template <class T>
-RAYQ_INLINE bool unscaled_unit(const Vec3<T>& v)
+RAYQ_INLINE bool unscaled_unit(T dd)
 {
-    const T dd = rayq::dot(v, v);
     constexpr T smallest_unscaled = std::numeric_limits<T>::min() / (std::numeric_limits<T>::epsilon() * std::numeric_limits<T>::epsilon());
     return dd >= smallest_unscaled && dd <= std::numeric_limits<T>::max();
 }
@@ -71,7 +71,8 @@ RAYQ_INLINE bool unscaled_unit(const Vec3<T>& v)
 template <class T>
 RAYQ_INLINE Vec3<T> unit(const Vec3<T>& v)
 {
-    if (unscaled_unit(v)) return v * (T(1) / std::sqrt(rayq::dot(v, v)));
+    const T dd = rayq::dot(v, v);
+    if (unscaled_unit(dd)) return v * (T(1) / std::sqrt(dd));
     // Every component checked: std::max skips a NaN that is not first (NaN < x is false).
     if (!(std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z))) return {T(0), T(0), T(0)};
     const T m = std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
