@@ -263,19 +263,24 @@ public:
     }
 
 private:
-    // The first crossing of primitive i inside window's (tmin, tmax) and whether no crossing
-    // precedes it: the scalar intersect()'s own core (leading_crossings: under `accurate` only
-    // the first root in the window is rounded), no record.
+    // The first crossing of primitive i inside (ray.tmin, tmax) and whether no crossing precedes
+    // it: the scalar intersect()'s own core (leading_crossings: under `accurate` only the first
+    // root in the window is rounded), no record. Answers in a bool, the crossing through `out`:
+    // returned as std::optional, GCC stored its flag as a byte and read it back within eight
+    // bytes, a store-forwarding stall on every miss, and the window ray was copied for the call
+    // (100,000 spheres, `stable`, 6 paired rounds: 0.887x -> 0.907x Embree, nearest 0.962x -> 0.988x).
     struct FirstCrossing {
         Crossing<T> crossing;
         bool is_first;
     };
-    std::optional<FirstCrossing> first_crossing(const Ray<T>& window, unsigned i) const
+    bool first_crossing(const Ray<T>& ray, T tmax, unsigned i, FirstCrossing& out) const
     {
+        const Ray<T> window{ray.origin, ray.direction, ray.tmin, tmax};
         const auto cs = ::rayq::detail::leading_crossings(policy_, window, primitives_[i]);
         const Crossing<T>* c = ::rayq::detail::first_in_window(window, cs);
-        if (!c) return std::nullopt;
-        return FirstCrossing{*c, c == cs.begin()};
+        if (!c) return false;
+        out = FirstCrossing{*c, c == cs.begin()};
+        return true;
     }
 
     static void bounds_callback(const RTCBoundsFunctionArguments* args)
@@ -305,13 +310,12 @@ private:
         if (QueryContext<T>* ctx = args->N == 1 ? QueryContext<T>::from(args->context) : nullptr) {  // FTZ/DAZ already off
             if (!args->valid[0]) return;
             RTCRayHit* rh = reinterpret_cast<RTCRayHit*>(args->rayhit);
-            Ray<T> window = ctx->ray;
-            window.tmax = ctx->window_end;
+            T tmax = ctx->window_end;
             // Another geometry (Embree native) lowered tfar below what we wrote: its hit is nearer.
-            if (rh->ray.tfar != ctx->tfar_written && T(rh->ray.tfar) < window.tmax) window.tmax = T(rh->ray.tfar);
-            const std::optional<FirstCrossing> found = self->first_crossing(window, prim);
-            if (!found) return;
-            const Crossing<T>* c = &found->crossing;
+            if (rh->ray.tfar != ctx->tfar_written && T(rh->ray.tfar) < tmax) tmax = T(rh->ray.tfar);
+            FirstCrossing found;
+            if (!self->first_crossing(ctx->ray, tmax, prim, found)) return;
+            const Crossing<T>* c = &found.crossing;
             // Equal t: the lower (geomID, primID) wins, as the scalar loop's first index does.
             if (ctx->found() && !(c->t < ctx->t || (c->t == ctx->t && std::make_pair(args->geomID, prim) <
                                                                           std::make_pair(ctx->geomID, ctx->primID))))
@@ -320,11 +324,11 @@ private:
             ctx->geomID = args->geomID;
             ctx->primID = prim;
             ctx->crossing = *c;
-            ctx->crossing_is_first = found->is_first;
+            ctx->crossing_is_first = found.is_first;
             ctx->window_end = rayq::detail::next_up(c->t);  // ties stay in the window (rayq::Scene does the same)
             ctx->tfar_written = detail::to_tfar(c->t);
             rh->ray.tfar = ctx->tfar_written;
-            const Vec3<float> n = self->outward_normal_at(window, prim, *c);
+            const Vec3<float> n = self->outward_normal_at(ctx->ray, prim, *c);
             rh->hit.Ng_x = n.x, rh->hit.Ng_y = n.y, rh->hit.Ng_z = n.z;
             rh->hit.u = rh->hit.v = 0;
             rh->hit.primID = prim;
@@ -340,10 +344,10 @@ private:
             if (!args->valid[i]) continue;
             const Ray<T> ray = ray_from_lane(rays, args->N, i);
             if (!usable(ray)) continue;
-            const std::optional<FirstCrossing> found = self->first_crossing(ray, prim);
-            if (!found) continue;
-            RTCRayN_tfar(rays, args->N, i) = detail::to_tfar(found->crossing.t);
-            const Vec3<float> n = self->outward_normal_at(ray, prim, found->crossing);
+            FirstCrossing found;
+            if (!self->first_crossing(ray, ray.tmax, prim, found)) continue;
+            RTCRayN_tfar(rays, args->N, i) = detail::to_tfar(found.crossing.t);
+            const Vec3<float> n = self->outward_normal_at(ray, prim, found.crossing);
             RTCHitN_Ng_x(hits, args->N, i) = n.x, RTCHitN_Ng_y(hits, args->N, i) = n.y, RTCHitN_Ng_z(hits, args->N, i) = n.z;
             RTCHitN_u(hits, args->N, i) = 0, RTCHitN_v(hits, args->N, i) = 0;
             RTCHitN_primID(hits, args->N, i) = prim;
@@ -357,7 +361,8 @@ private:
         const auto* self = static_cast<const UserGeometry*>(args->geometryUserPtr);
         const unsigned prim = args->primID;  // valid, as in intersect_callback
         if (QueryContext<T>* ctx = args->N == 1 ? QueryContext<T>::from(args->context) : nullptr) {  // FTZ/DAZ already off
-            if (!args->valid[0] || !self->first_crossing(ctx->ray, prim)) return;
+            FirstCrossing found;
+            if (!args->valid[0] || !self->first_crossing(ctx->ray, ctx->ray.tmax, prim, found)) return;
             ctx->t = T(0);  // any hit: no t is computed
             ctx->geomID = args->geomID;
             ctx->primID = prim;
@@ -368,7 +373,8 @@ private:
         for (unsigned i = 0; i < args->N; ++i) {
             if (!args->valid[i]) continue;
             const Ray<T> ray = ray_from_lane(args->ray, args->N, i);
-            if (usable(ray) && self->first_crossing(ray, prim)) RTCRayN_tfar(args->ray, args->N, i) = -std::numeric_limits<float>::infinity();
+            FirstCrossing found;
+            if (usable(ray) && self->first_crossing(ray, ray.tmax, prim, found)) RTCRayN_tfar(args->ray, args->N, i) = -std::numeric_limits<float>::infinity();
         }
     }
 
