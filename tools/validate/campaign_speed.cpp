@@ -1,7 +1,7 @@
 // The speed campaign (issue 7): runs the Google Benchmark programs built next to rayq-validate
-// and keeps the median of repetitions per benchmark, with ratios taken inside the same run
-// (timings are never comparable across runs on a shared machine). Not deterministic: shard/merge
-// identity excludes it. A program that is not built (rayq-bench-embree without Embree 3, all of
+// and keeps the median of repetitions (or rounds: Program::rounds) per benchmark, with ratios
+// taken inside the same run (timings are never comparable across runs on a shared machine).
+// Not deterministic: shard/merge identity excludes it. A program that is not built (rayq-bench-embree without Embree 3, all of
 // them without Google Benchmark) shows as skipped, and gates on its metrics are skipped.
 //
 // rayq-bench-embree also answers the oracle campaign's float sphere cases with Embree's native
@@ -38,9 +38,17 @@ struct Program {
     const char* needs;         // what building it takes (the reason shown when it is absent)
     std::vector<std::string> metrics;  // prefixes of the metrics its results give
     bool sphere_answers = false;       // also answers the oracle's float sphere cases (Embree)
+    // 0: one run, five repetitions of every benchmark in random order, medians. N: N runs
+    // ("rounds") of one repetition each in registration order, where the rows a ratio compares run
+    // back to back; each ratio is the median of its N same-round ratios (reduce()).
+    int rounds = 0;
 };
 const std::vector<Program> programs = {
-    {"policies", "rayq-bench", "", "", "Google Benchmark", {"speed.stable_over_fast.", "speed.accurate_over_fast."}},
+    // The gated ratios (accurate and stable over fast) by rounds: rayq-bench registers a primitive's
+    // three policies one after the other. With five interleaved repetitions of all 96 benchmarks,
+    // a ratio's two medians were sampled up to minutes apart, and one report failed the gate on
+    // noise: the open double cylinder at 1.30 where runs of that pair alone gave 1.17-1.18.
+    {"policies", "rayq-bench", "", "", "Google Benchmark", {"speed.stable_over_fast.", "speed.accurate_over_fast."}, false, 5},
     // One ray against 16 and 1,024 primitives: scalar loop, compile-time scene, runtime variant.
     {"scene", "rayq-bench-scene", "sphere/float/fast/(loop|scene)/16$", "/(16|1024)$", "Google Benchmark",
      {"speed.scene_over_loop.", "speed.variant_over_loop."}},
@@ -171,25 +179,61 @@ json run(const Settings& s, const Item& item, std::string& csv)
     const std::filesystem::path out = temporary_path("bench.json");
     char min_time[64];
     std::snprintf(min_time, sizeof min_time, "--benchmark_min_time=%g", s.bench_min_time);
-    // Repetitions in random order across the program's benchmarks: on a shared machine whose speed
-    // drifts for minutes at a time, five repetitions of `fast` followed by five of `accurate` put
-    // the drift into their ratio (the same binary's float capped cylinder: 0.98, 1.02 and 1.35 in
-    // three runs); interleaved, both medians sample the same stretch of time (0.99, 1.05, 1.02).
-    std::vector<std::string> args = {binary, min_time, "--benchmark_repetitions=5", "--benchmark_enable_random_interleaving=true",
-                                     "--benchmark_report_aggregates_only=true", "--benchmark_format=json", "--benchmark_out_format=json",
-                                     "--benchmark_out=" + out.string()};
+    std::vector<std::string> args = {binary, min_time, "--benchmark_format=json", "--benchmark_out_format=json", "--benchmark_out=" + out.string()};
+    if (program.rounds == 0) {
+        // Repetitions in random order across the program's benchmarks: on a shared machine whose
+        // speed drifts for minutes at a time, five repetitions of `fast` followed by five of
+        // `accurate` put the drift into their ratio (the same binary's float capped cylinder: 0.98,
+        // 1.02 and 1.35 in three runs); interleaved, both medians sample the same stretch of time
+        // (0.99, 1.05, 1.02).
+        for (const char* a : {"--benchmark_repetitions=5", "--benchmark_enable_random_interleaving=true", "--benchmark_report_aggregates_only=true"})
+            args.push_back(a);
+    } else {
+        args.push_back("--benchmark_repetitions=1");  // in registration order (Program::rounds)
+    }
     if (const std::string filter = item.spec.value("filter", ""); !filter.empty()) args.push_back("--benchmark_filter=" + filter);
     std::vector<oracle::Fixture> cases;
     const std::filesystem::path answers_in = temporary_path("answers.in"), answers_out = temporary_path("answers.out");
+    std::vector<std::string> answer_args;
     if (item.spec.contains("sphere_cases")) {
         cases = oracle::generate_cases("sphere", oracle::Scalar::f32, item.spec.at("sphere_cases"), s.seed);
         std::string text;
         for (const oracle::Fixture& f : cases) text += answer_input_line(std::get<oracle::Input<Sphere<float>>>(f.input));
         std::ofstream(answers_in) << text;
-        args.push_back("--answers_in=" + answers_in.string());
-        args.push_back("--answers_out=" + answers_out.string());
+        answer_args = {"--answers_in=" + answers_in.string(), "--answers_out=" + answers_out.string()};
     }
-    const int status = run_program(args, /*quiet=*/true);
+    // Per benchmark, in the order of the program's output: the median's JSON object (rounds == 0),
+    // or each round's time and counters.
+    std::vector<std::string> order;
+    std::map<std::string, json> median_of;
+    std::map<std::string, std::vector<double>> round_ns;
+    std::map<std::string, std::map<std::string, std::vector<double>>> round_counters;
+    std::map<std::string, std::string> unit_of;
+    json context;
+    const int runs = program.rounds == 0 ? 1 : program.rounds;
+    for (int run = 0; run < runs; ++run) {
+        std::vector<std::string> run_args = args;
+        if (run == 0) run_args.insert(run_args.end(), answer_args.begin(), answer_args.end());  // answered once
+        const int status = run_program(run_args, /*quiet=*/true);
+        if (status != 0) throw std::runtime_error(binary + " exited with status " + std::to_string(status));
+        std::ifstream in(out);
+        const json j = json::parse(strict_json(std::string(std::istreambuf_iterator<char>(in), {})));
+        in.close();
+        std::filesystem::remove(out);
+        if (run == 0) context = j.at("context");
+        for (const json& b : j.at("benchmarks")) {
+            const std::string name = b.at("run_name");
+            if (program.rounds == 0 ? b.value("aggregate_name", "") != "median" : b.value("run_type", "iteration") != "iteration") continue;
+            if (!unit_of.count(name)) order.push_back(name), unit_of[name] = b.at("time_unit");
+            if (program.rounds == 0) {
+                median_of[name] = b;
+                continue;
+            }
+            round_ns[name].push_back(b.at("real_time").get<double>());
+            for (const auto& [k, v] : b.items())
+                if (v.is_number()) round_counters[name][k].push_back(v.get<double>());
+        }
+    }
     std::vector<std::string> answers;
     if (!cases.empty()) {
         std::ifstream answers_file(answers_out);
@@ -197,25 +241,38 @@ json run(const Settings& s, const Item& item, std::string& csv)
         std::filesystem::remove(answers_in);
         std::filesystem::remove(answers_out);
     }
-    if (status != 0) throw std::runtime_error(binary + " exited with status " + std::to_string(status));
-    std::ifstream in(out);
-    const json j = json::parse(strict_json(std::string(std::istreambuf_iterator<char>(in), {})));
-    std::filesystem::remove(out);
+    const auto median = [](std::vector<double> v) {
+        std::sort(v.begin(), v.end());
+        const std::size_t n = v.size();
+        return n == 0 ? 0.0 : n % 2 ? v[n / 2] : (v[n / 2 - 1] + v[n / 2]) / 2;
+    };
+    const auto is_counter = [](const std::string& k) {
+        return k != "real_time" && k != "cpu_time" && k != "iterations" && k != "repetitions" && k != "repetition_index" &&
+               k != "threads" && k != "family_index" && k != "per_family_instance_index";
+    };
     json rows = json::array();
-    for (const json& b : j.at("benchmarks")) {
-        if (b.value("aggregate_name", "") != "median") continue;
-        json row = {{"name", b.at("run_name")}, {"ns", b.at("real_time")}, {"time_unit", b.at("time_unit")}};
+    for (const std::string& name : order) {
+        double ns = 0;
         json counters = json::object();
-        for (const auto& [k, v] : b.items())
-            if (v.is_number() && k != "real_time" && k != "cpu_time" && k != "iterations" && k != "repetitions" &&
-                k != "repetition_index" && k != "threads" && k != "family_index" && k != "per_family_instance_index")
-                counters[k] = v;
+        json row = {{"name", name}};
+        if (program.rounds == 0) {
+            const json& b = median_of.at(name);
+            ns = b.at("real_time").get<double>();
+            for (const auto& [k, v] : b.items())
+                if (v.is_number() && is_counter(k)) counters[k] = v;
+        } else {
+            ns = median(round_ns.at(name));
+            row["rounds"] = round_ns.at(name);
+            for (const auto& [k, values] : round_counters.at(name))
+                if (is_counter(k)) counters[k] = median(values);
+        }
+        row["ns"] = ns;
+        row["time_unit"] = unit_of.at(name);
         row["counters"] = counters;
-        csv += item.id + "," + b.at("run_name").get<std::string>() + "," + b.at("real_time").dump() + "," +
-               b.at("time_unit").get<std::string>() + "\n";
+        csv += item.id + "," + name + "," + json(ns).dump() + "," + unit_of.at(name) + "\n";
         rows.push_back(row);
     }
-    json result = {{"program", item.id}, {"context", j.at("context")}, {"rows", rows}};
+    json result = {{"program", item.id}, {"context", context}, {"rows", rows}};
     if (!cases.empty()) result["sphere_accuracy"] = sphere_accuracy(cases, answers);
     return result;
 }
@@ -293,11 +350,25 @@ json reduce(const Settings&, const std::vector<json>& results)
 {
     json metrics = json::object(), rows = json::array(), notes = json::array(), skipped_metrics = json::array();
     std::map<std::string, double> ns;  // run_name -> median
+    std::map<std::string, std::vector<double>> rounds;  // run_name -> time per round (Program::rounds)
     for (const json& r : results)
         for (const json& row : r.at("rows")) {
             rows.push_back(row);
             ns[row.at("name").get<std::string>()] = row.at("ns").get<double>();
+            if (row.contains("rounds")) rounds[row.at("name").get<std::string>()] = row.at("rounds").get<std::vector<double>>();
         }
+    // other's time over base's: the median of their same-round ratios when both ran in rounds,
+    // else the ratio of their medians (from the same run).
+    const auto ratio_of = [&](const std::string& other, const std::string& base) {
+        const auto a = rounds.find(other), b = rounds.find(base);
+        if (a == rounds.end() || b == rounds.end() || a->second.size() != b->second.size() || a->second.empty())
+            return ns.at(other) / ns.at(base);
+        std::vector<double> r;
+        for (std::size_t i = 0; i < a->second.size(); ++i) r.push_back(a->second[i] / b->second[i]);
+        std::sort(r.begin(), r.end());
+        const std::size_t n = r.size();
+        return n % 2 ? r[n / 2] : (r[n / 2 - 1] + r[n / 2]) / 2;
+    };
     json ratios = json::array();
     for (const auto& [name, t] : ns) {
         const auto slash = name.rfind('/');
@@ -307,7 +378,7 @@ json reduce(const Settings&, const std::vector<json>& results)
             const auto other = ns.find(stem + "/" + policy);
             if (other == ns.end() || t <= 0) continue;
             const std::string variant = stem.substr(10);  // "<primitive>/<type>"
-            const double ratio = other->second / t;
+            const double ratio = ratio_of(other->first, name);
             ratios.push_back({{"variant", variant}, {"policy", policy}, {"over_fast", ratio}});
             std::string key = variant;
             for (char& ch : key) if (ch == '/') ch = '.';
@@ -347,12 +418,13 @@ json reduce(const Settings&, const std::vector<json>& results)
     for (const json& r : rows) bench_table.push_back({r["name"], r["ns"], r["time_unit"], r["counters"].dump()});
     for (const json& r : ratios) ratio_table.push_back({r["variant"], r["policy"], r["over_fast"]});
     json tables = json::array(
-        {{{"title", "Cost relative to fast (same run)"}, {"columns", {"primitive/type", "policy", "time / fast"}},
+        {{{"title", "Cost relative to fast (median of 5 rounds' ratios: each round runs the three policies back to back)"},
+          {"columns", {"primitive/type", "policy", "time / fast"}},
           {"rows", ratio_table}},
          {{"title", "One ray against N primitives: speed-up over the scalar loop (same run)"},
           {"columns", {"query/primitive/type/policy", "N", "Scene<...>", "std::variant"}},
           {"rows", scene_table}},
-         {{"title", "Benchmarks (median of 5 repetitions)"}, {"columns", {"benchmark", "median time", "unit", "counters"}},
+         {{"title", "Benchmarks (median of 5 repetitions; rayq-bench: of 5 rounds)"}, {"columns", {"benchmark", "median time", "unit", "counters"}},
           {"rows", bench_table}}});
     tables.insert(tables.begin() + 2, embree_tables.begin(), embree_tables.end());
     return {{"metrics", metrics}, {"rows", rows}, {"ratios", ratios}, {"embree", embree}, {"tables", tables},
@@ -431,7 +503,7 @@ Campaign speed_campaign()
 {
     Campaign c;
     c.name = "speed";
-    c.title = "Speed (Google Benchmark, medians of 5 repetitions, ratios from the same run)";
+    c.title = "Speed (Google Benchmark, medians of 5 repetitions or rounds, ratios from the same run)";
     c.deterministic = false;
     c.plan = plan;
     c.run = run;
