@@ -352,7 +352,8 @@ struct PlainUserSpheres {
 // first candidate may be presented again as the sphere's far root: rejected again, as it must be.
 struct FilteredPoints {
     static constexpr int stride = 8;  // floats per vertex: x, y, z, Embree's radius, rayq's radius
-    RTCScene scene = nullptr;
+    NativeScene native;
+    RTCScene scene = native.scene;
     const float* vertices = nullptr;
 
     // The query, found again from the context Embree hands the filter (its first member).
@@ -366,7 +367,6 @@ struct FilteredPoints {
 
     explicit FilteredPoints(const std::vector<Sphere>& prims)
     {
-        scene = rtcNewScene(device());
         RTCGeometry g = rtcNewGeometry(device(), RTC_GEOMETRY_TYPE_SPHERE_POINT);
         auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, stride * sizeof(float), prims.size()));
         vertices = v;
@@ -376,15 +376,9 @@ struct FilteredPoints {
         }
         rtcSetGeometryUserData(g, this);
         rtcSetGeometryIntersectFilterFunction(g, &FilteredPoints::filter);
-        rtcCommitGeometry(g);
-        rtcAttachGeometry(scene, g);
-        rtcReleaseGeometry(g);
-        rtcCommitScene(scene);
-        if (rtcGetDeviceError(device()) != RTC_ERROR_NONE) throw std::runtime_error("Embree: building the scene failed");
+        native.add(g);
+        native.commit();
     }
-    FilteredPoints(const FilteredPoints&) = delete;
-    FilteredPoints& operator=(const FilteredPoints&) = delete;
-    ~FilteredPoints() { rtcReleaseScene(scene); }
 
     static void filter(const RTCFilterFunctionNArguments* a)
     {

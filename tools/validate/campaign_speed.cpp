@@ -97,6 +97,14 @@ std::vector<Item> plan(const Settings& s)
     return items;
 }
 
+// The median of a run's values (0 for none): a benchmark's rounds, a ratio's same-round ratios.
+double median(std::vector<double> v)
+{
+    std::sort(v.begin(), v.end());
+    const std::size_t n = v.size();
+    return n == 0 ? 0.0 : n % 2 ? v[n / 2] : (v[n / 2 - 1] + v[n / 2]) / 2;
+}
+
 // A case as rayq-bench-embree --answers_in reads it (its write_answers has the format).
 std::string answer_input_line(const oracle::Input<Sphere<float>>& c)
 {
@@ -241,11 +249,6 @@ json run(const Settings& s, const Item& item, std::string& csv)
         std::filesystem::remove(answers_in);
         std::filesystem::remove(answers_out);
     }
-    const auto median = [](std::vector<double> v) {
-        std::sort(v.begin(), v.end());
-        const std::size_t n = v.size();
-        return n == 0 ? 0.0 : n % 2 ? v[n / 2] : (v[n / 2 - 1] + v[n / 2]) / 2;
-    };
     const auto is_counter = [](const std::string& k) {
         return k != "real_time" && k != "cpu_time" && k != "iterations" && k != "repetitions" && k != "repetition_index" &&
                k != "threads" && k != "family_index" && k != "per_family_instance_index";
@@ -365,9 +368,7 @@ json reduce(const Settings&, const std::vector<json>& results)
             return ns.at(other) / ns.at(base);
         std::vector<double> r;
         for (std::size_t i = 0; i < a->second.size(); ++i) r.push_back(a->second[i] / b->second[i]);
-        std::sort(r.begin(), r.end());
-        const std::size_t n = r.size();
-        return n % 2 ? r[n / 2] : (r[n / 2 - 1] + r[n / 2]) / 2;
+        return median(r);
     };
     json ratios = json::array();
     for (const auto& [name, t] : ns) {
