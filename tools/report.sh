@@ -8,5 +8,6 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 "$root/tools/setup.sh"
 build="${RAYQ_BUILD_DIR:-$root/build/release}"
 cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DRAYQ_BUILD_TESTS=OFF >/dev/null
-cmake --build "$build" -j "${RAYQ_JOBS:-$(nproc)}" --target rayq-validate
+# rayq-bench-native: the -march=native benchmark copies the speed campaign reads the issue-7 targets from.
+cmake --build "$build" -j "${RAYQ_JOBS:-$(nproc)}" --target rayq-validate rayq-bench-native
 exec "$build/tools/validate/rayq-validate" "$@"

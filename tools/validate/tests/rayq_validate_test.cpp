@@ -1,14 +1,18 @@
 // rayq-validate end to end (issue 8): the --quick report, its schema, gates and the exit status,
 // shard/merge identity, resume, bad input, the fuzz campaign, Embree in the speed campaign (or its
 // absence), and the page in headless Chromium. Runs the real program; nothing is mocked.
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <regex>
+#include <set>
 #include <sstream>
 #include <string>
 #include <sys/wait.h>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -364,6 +368,60 @@ TEST_F(RayqValidate, EmbreeIsMeasuredOrShownAsSkipped)
         EXPECT_TRUE(speed["metrics"].contains("speed.embree.rayq_embree_stable_over_points.100000"));
         EXPECT_NE(html.find("Embree (rayq-bench-embree): M rays/s"), std::string::npos);
         EXPECT_EQ(speed["embree"]["pareto"].size(), 4u) << "Embree and rayq's policies on the Pareto plot";
+    }
+}
+
+// The issue-7 targets: each reads the same-round values of a targets_* program (its -march=native
+// copy when built, else the portable program, which a note says); "met" is the median reaching the
+// target, and speed.target_margins.* is the value over the target.
+TEST_F(RayqValidate, IssueSevenTargetsAreReported)
+{
+    const json summary = read_json(work / "quick" / "summary.json");
+    const json& speed = summary["campaigns"]["speed"]["section"];
+    const std::string html = read_text(work / "quick" / "index.html");
+    std::set<std::string> note_titles;
+    for (const json& note : speed.value("notes", json::array())) note_titles.insert(note["title"].get<std::string>());
+    std::set<std::string> keys;
+    for (const json& t : speed.at("targets")) {
+        const std::string key = t["key"];
+        keys.insert(key);
+        const double value = t["value"], lo = t["min"], hi = t["max"], at_least = t["at_least"];
+        EXPECT_GT(lo, 0) << key;
+        EXPECT_LE(lo, value) << key;
+        EXPECT_LE(value, hi) << key;
+        EXPECT_EQ(t["met"].get<bool>(), value >= at_least) << key;
+        EXPECT_DOUBLE_EQ(speed["metrics"].value("speed.targets." + key, 0.0), value) << key;
+        EXPECT_DOUBLE_EQ(speed["metrics"].value("speed.target_margins." + key, 0.0), value / at_least) << key;
+    }
+    const bool scene_ran = !note_titles.count("rayq-bench-scene (issue-7 targets): skipped");
+    const bool embree_ran = !note_titles.count("rayq-bench-embree (issue-7 targets): skipped");
+    if (scene_ran) {
+        EXPECT_TRUE(keys.count("sphere_float_fast_gtests"));
+        EXPECT_TRUE(keys.count("any_over_closest.sphere_float_fast"));
+    }
+    if (embree_ran) {
+        ASSERT_TRUE(keys.count("sphere_16_over_embree"));
+        // Recomputed from the rows: Embree's time over rayq's, round by round, then the median.
+        std::map<std::string, std::vector<double>> rounds;
+        for (const json& row : speed["rows"])
+            if (row["program"] == "targets_embree") rounds[row["name"]] = row["rounds"].get<std::vector<double>>();
+        const auto& embree = rounds.at("sphere/embree_points/16");
+        const auto& rayq = rounds.at("sphere/rayq_scene_fast_shading/16");
+        ASSERT_EQ(embree.size(), 5u);
+        ASSERT_EQ(rayq.size(), 5u);
+        std::vector<double> ratio;
+        for (std::size_t i = 0; i < 5; ++i) ratio.push_back(embree[i] / rayq[i]);
+        std::sort(ratio.begin(), ratio.end());
+        EXPECT_DOUBLE_EQ(speed["metrics"]["speed.targets.sphere_16_over_embree"].get<double>(), ratio[2]);
+    }
+    if (scene_ran || embree_ran) {
+        EXPECT_NE(html.find("Issue-7 targets ("), std::string::npos);
+        for (const json& t : speed["targets"])
+            if (!t["native"].get<bool>()) {
+                bool noted = false;
+                for (const std::string& title : note_titles) noted |= title.find(": portable build") != std::string::npos;
+                EXPECT_TRUE(noted) << "a target measured on the portable build says so";
+            }
     }
 }
 
