@@ -98,6 +98,12 @@ std::string strict_json(std::string text)
     return text;
 }
 
+// A note's title about program p: its binary, and for the targets items which use it.
+std::string note_title(const Program& p, const char* what)
+{
+    return std::string(p.binary) + (p.targets ? " (issue-7 targets)" : "") + ": " + what;
+}
+
 // The binary a program runs, and whether it was compiled with -march=native: its native copy when
 // it has one and that is built, else the plain one (native too when the tools are: RAYQ_NATIVE).
 std::pair<std::string, bool> binary_of(const Program& p)
@@ -131,6 +137,16 @@ double median(std::vector<double> v)
     std::sort(v.begin(), v.end());
     const std::size_t n = v.size();
     return n == 0 ? 0.0 : n % 2 ? v[n / 2] : (v[n / 2 - 1] + v[n / 2]) / 2;
+}
+
+// Round by round, `over`'s time divided by `under`'s (rounds where `under` has a time): the
+// same-round ratios a ratio's median and range are read from.
+std::vector<double> same_round_ratios(const std::vector<double>& over, const std::vector<double>& under)
+{
+    std::vector<double> r;
+    for (std::size_t i = 0; i < over.size() && i < under.size(); ++i)
+        if (under[i] > 0) r.push_back(over[i] / under[i]);
+    return r;
 }
 
 // A case as rayq-bench-embree --answers_in reads it (its write_answers has the format).
@@ -442,11 +458,8 @@ json targets_section(const std::vector<json>& results, json& metrics, json& tabl
         const auto ref = t.reference ? row_of.find(t.reference) : row_of.end();
         if (row == row_of.end() || (t.reference && ref == row_of.end())) continue;
         std::vector<double> values;
-        if (t.reference) {
-            const auto mine = row->second->at("rounds").get<std::vector<double>>();
-            const auto theirs = ref->second->at("rounds").get<std::vector<double>>();
-            for (std::size_t i = 0; i < mine.size() && i < theirs.size(); ++i)
-                if (mine[i] > 0) values.push_back(theirs[i] / mine[i]);  // same rays per iteration: time ratio = rays/s ratio
+        if (t.reference) {  // the same rays per iteration: the reference's time over the row's is rays/s over rays/s
+            values = same_round_ratios(ref->second->at("rounds").get<std::vector<double>>(), row->second->at("rounds").get<std::vector<double>>());
         } else if (const auto rate = row->second->at("counters").find("items_per_second"); rate != row->second->at("counters").end()) {
             // Each round's rate from its time (the same tests per iteration every round): the
             // counter holds the median of the rounds' rates, which belongs to the median time.
@@ -472,7 +485,7 @@ json targets_section(const std::vector<json>& results, json& metrics, json& tabl
                           {"rows", table}});
     for (const auto& [program, native] : native_of)
         if (!native)
-            notes.push_back({{"title", std::string(program_named(program).binary) + " (issue-7 targets): portable build"},
+            notes.push_back({{"title", note_title(program_named(program), "portable build")},
                              {"text", "The issue-7 targets were measured with the portable build of rayq (no -march=native: SSE2 on "
                                       "x86-64), while Embree runs its widest ISA. The targets were set for -march=native builds: "
                                       "tools/report.sh builds those copies (cmake --build <dir> --target rayq-bench-native).\n"}});
@@ -499,9 +512,7 @@ json reduce(const Settings&, const std::vector<json>& results)
         const auto a = rounds.find(other), b = rounds.find(base);
         if (a == rounds.end() || b == rounds.end() || a->second.size() != b->second.size() || a->second.empty())
             return ns.at(other) / ns.at(base);
-        std::vector<double> r;
-        for (std::size_t i = 0; i < a->second.size(); ++i) r.push_back(a->second[i] / b->second[i]);
-        return median(r);
+        return median(same_round_ratios(a->second, b->second));
     };
     json ratios = json::array();
     for (const auto& [name, t] : ns) {
@@ -543,8 +554,7 @@ json reduce(const Settings&, const std::vector<json>& results)
         const Program& program = program_named(r.at("program"));
         if (r.contains("skipped")) {
             for (const std::string& prefix : program.metrics) skipped_metrics.push_back({{"prefix", prefix}, {"reason", r.at("skipped")}});
-            notes.push_back({{"title", std::string(program.binary) + (program.targets ? " (issue-7 targets)" : "") + ": skipped"},
-                             {"text", r.at("skipped").get<std::string>() + "\n"}});
+            notes.push_back({{"title", note_title(program, "skipped")}, {"text", r.at("skipped").get<std::string>() + "\n"}});
         } else if (program.sphere_answers) {
             embree = embree_section(r, metrics, embree_tables);
         }
