@@ -115,24 +115,64 @@ struct has_static_residual<Prim, std::void_t<decltype(residual(std::declval<cons
                                                                std::declval<const Vec3<Magnitude<double>>&>(), Magnitude<double>{},
                                                                Part::surface))>> : std::true_type {};
 
-// How far the exact root can be from t (certify_root). A float primitive's residual is evaluated
-// in double by the static filter (magnitude.hpp: float inputs keep every monomial of at most six
-// factors normal in double), about a third of the instructions of Bounded<float> and a bound
-// whose evaluation error is u_double·m instead of u_float·m; rounded up to float.
+// A float primitive's certificate runs in double: its inputs are exact there, its residual goes
+// through the static filter (magnitude.hpp: float inputs keep every monomial of at most six factors
+// normal in double; about a third of the instructions of Bounded<float>, and an evaluation error
+// u_double·m instead of u_float·m), its trim margins through Bounded<double>. One precision for
+// the whole certificate also keeps float lanes out of registers that hold doubles: clang -O1 packs
+// a Bounded<float> into the low half of an xmm register and multiplies all four lanes, and double
+// bits left in the upper ones read as subnormal floats (an x86 microcode assist each;
+// subnormal_operand_test).
+template <class Prim>
+using certificate_scalar_t =
+    std::conditional_t<std::is_same_v<scalar_t<Prim>, float> && has_static_residual<Prim>::value, double, scalar_t<Prim>>;
+
+// The residual at t in the static filter, and whether its guarantee holds (degrees at most six).
+template <class Prim>
+RAYQ_INLINE bool static_residual(const Ray<scalar_t<Prim>>& ray, const Prim& prim, scalar_t<Prim> t, Part part,
+                                 Residual<Magnitude<double>>& r)
+{
+    using M = Magnitude<double>;
+    r = residual(prim, lift<M>(ray.origin), lift<M>(ray.direction), M{double(t)}, part);
+    return r.f.d <= 6 && r.df.d <= 6 && r.a.d <= 6;
+}
+
+// How far the exact root can be from t (certify_root), rounded up to T.
 template <class Prim>
 inline scalar_t<Prim> certified_root_distance(const Ray<scalar_t<Prim>>& ray, const Prim& prim, scalar_t<Prim> t, Part part)
 {
     using T = scalar_t<Prim>;
-    if constexpr (std::is_same_v<T, float> && has_static_residual<Prim>::value) {
-        using M = Magnitude<double>;
-        const Residual<M> r = residual(prim, lift<M>(ray.origin), lift<M>(ray.direction), M{double(t)}, part);
-        if (r.f.d <= 6 && r.df.d <= 6 && r.a.d <= 6) {
+    if constexpr (std::is_same_v<certificate_scalar_t<Prim>, double> && std::is_same_v<T, float>) {
+        Residual<Magnitude<double>> r;
+        if (static_residual(ray, prim, t, part, r)) {
             const double h = certify_root(Residual<Bounded<double>>{bounded(r.f), bounded(r.df), bounded(r.a)});
             const float hf = float(h);
             return double(hf) < h ? std::nextafter(hf, std::numeric_limits<float>::infinity()) : hf;
         }
     }
     return certify_root(residual(prim, exact(ray.origin), exact(ray.direction), Bounded<T>{t}, part));
+}
+
+// Whether F(t) < 0 for certain: t lies inside the surface.
+template <class Prim>
+inline bool certainly_inside(const Ray<scalar_t<Prim>>& ray, const Prim& prim, scalar_t<Prim> t)
+{
+    using T = scalar_t<Prim>;
+    if constexpr (std::is_same_v<certificate_scalar_t<Prim>, double> && std::is_same_v<T, float>) {
+        Residual<Magnitude<double>> r;
+        if (static_residual(ray, prim, t, Part::surface, r)) return certain_sign(r.f) < 0;
+    }
+    const Bounded<T> f = residual(prim, exact(ray.origin), exact(ray.direction), Bounded<T>{t}, Part::surface).f;
+    return f.v < T(0) && lower(f) > T(0);
+}
+
+// Whether every root within t_error of t lies on the trimmed part (trim_margins).
+template <class Prim>
+inline bool certainly_on_part(const Ray<scalar_t<Prim>>& ray, const Prim& prim, scalar_t<Prim> t, scalar_t<Prim> t_error, Part part)
+{
+    using W = certificate_scalar_t<Prim>;
+    using N = Bounded<W>;
+    return certainly_within(trim_margins(prim, lift<N>(ray.origin), lift<N>(ray.direction), N{W(t), W(t_error)}, part));
 }
 
 template <class Policy, class Prim>
@@ -165,7 +205,7 @@ inline HitBounds<scalar_t<Prim>> certify_hit(Policy, const Ray<scalar_t<Prim>>& 
     // radius, the clip box): a root of the untrimmed surface near a rim may belong to no hit at
     // all. Policies whose trim decisions are exact have nothing to prove here.
     if (!exact_decisions && std::isfinite(t_error) &&
-        !certainly_within(trim_margins(prim, exact(ray.origin), exact(ray.direction), Bounded<T>{c.t, t_error}, c.part)))
+        !certainly_on_part(ray, prim, c.t, t_error, c.part))
         t_error = std::numeric_limits<T>::infinity();
     const T g2 = T(2) * unit_roundoff<T> / (T(1) - T(2) * unit_roundoff<T>);
     // A component the ray does not move along gains nothing from t's error (not ∞·0 = NaN).
@@ -250,11 +290,9 @@ RAYQ_INLINE Hit<scalar_t<Prim>> make_hit(Policy policy, const Ray<scalar_t<Prim>
 template <class Policy, class Prim>
 inline bool may_enter_window(Policy, const Ray<scalar_t<Prim>>& ray, const Prim& prim, const Crossing<scalar_t<Prim>>& c)
 {
-    using T = scalar_t<Prim>;
     if (std::is_same_v<Policy, accurate_policy> && accurate_decides_exactly<Prim>::value) return false;
     if (!(c.t <= ray.tmin)) return false;
-    const T e = certify_root(residual(prim, exact(ray.origin), exact(ray.direction), Bounded<T>{c.t}, c.part));
-    return !(c.t + e <= ray.tmin);
+    return !(c.t + certified_root_distance(ray, prim, c.t, c.part) <= ray.tmin);
 }
 
 // The first crossing in the window as a hit; its bound covers every earlier crossing that may
@@ -271,8 +309,7 @@ inline Hit<scalar_t<Prim>> first_hit(Policy policy, const Ray<scalar_t<Prim>>& r
     // formula, a far-away primitive in float).
     if (!(std::is_same_v<Policy, accurate_policy> && accurate_decides_exactly<Prim>::value) && !c.entering &&
         c.part == Part::surface && std::isfinite(ray.tmin)) {
-        const Bounded<T> f = residual(prim, exact(ray.origin), exact(ray.direction), Bounded<T>{ray.tmin}, Part::surface).f;
-        earlier_may_count = earlier_may_count || !(f.v < T(0) && lower(f) > T(0));
+        earlier_may_count = earlier_may_count || !certainly_inside(ray, prim, ray.tmin);
     }
     if (earlier_may_count) h.t_error = std::max(h.t_error, grow(c.t - ray.tmin));
     return h;
