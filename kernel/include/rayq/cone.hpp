@@ -76,7 +76,7 @@ inline detail::Margins<N> trim_margins(const Cone<T>& cone, const Vec3<N>& o, co
 }
 
 template <class N, class T>
-inline detail::Residual<N> residual(const Cone<T>& cone, const Vec3<N>& o, const Vec3<N>& d, N t, Part part)
+RAYQ_INLINE detail::Residual<N> residual(const Cone<T>& cone, const Vec3<N>& o, const Vec3<N>& d, N t, Part part)
 {
     using B = N;
     const Vec3<B> axis = detail::lift<N>(cone.p1) - detail::lift<N>(cone.p0);

@@ -92,7 +92,7 @@ inline detail::Margins<N> trim_margins(const Cylinder<T>& cyl, const Vec3<N>& o,
 }
 
 template <class N, class T>
-inline detail::Residual<N> residual(const Cylinder<T>& cyl, const Vec3<N>& o, const Vec3<N>& d, N t, Part part)
+RAYQ_INLINE detail::Residual<N> residual(const Cylinder<T>& cyl, const Vec3<N>& o, const Vec3<N>& d, N t, Part part)
 {
     using B = N;
     const Vec3<B> axis = detail::lift<N>(cyl.p1) - detail::lift<N>(cyl.p0);

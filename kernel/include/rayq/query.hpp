@@ -127,19 +127,57 @@ template <class Prim>
 using certificate_scalar_t =
     std::conditional_t<std::is_same_v<scalar_t<Prim>, float> && has_static_residual<Prim>::value, double, scalar_t<Prim>>;
 
-// The residual at t in the static filter, and whether its guarantee holds (degrees at most six).
+// Whether the primitive lists every length its residual reads (each_length: sphere, cylinder, cone).
+struct AnyLength {
+    template <class X>
+    void operator()(const X&) const {}
+};
+template <class Prim, class = void>
+struct lists_its_lengths : std::false_type {};
+template <class Prim>
+struct lists_its_lengths<Prim, std::void_t<decltype(each_length(std::declval<const Prim&>(), AnyLength{}))>> : std::true_type {};
+
+// Zero or of magnitude within [2^-64, 2^64] (NaN and infinities are not).
+template <class T>
+RAYQ_INLINE bool zero_or_within_2_64(T x)
+{
+    const double a = std::abs(double(x));
+    return a == 0 || (a >= 0x1p-64 && a <= 0x1p64);
+}
+template <class T>
+RAYQ_INLINE bool zero_or_within_2_64(const Vec3<T>& v)
+{
+    return zero_or_within_2_64(v.x) && zero_or_within_2_64(v.y) && zero_or_within_2_64(v.z);
+}
+
+// The residual at t in the static filter, and whether its guarantee holds: every monomial's
+// nonzero magnitudes multiply within double's normal range (magnitude.hpp). Float inputs keep six
+// factors there; fifteen when every input is zero or within 2^±64 ([2^-960, 2^960]), which a
+// primitive listing its lengths can check: the cone's surface residual, |(q × A)|²·|A|² − (r·|A|²)²,
+// has degree eight.
 template <class Prim>
 RAYQ_INLINE bool static_residual(const Ray<scalar_t<Prim>>& ray, const Prim& prim, scalar_t<Prim> t, Part part,
                                  Residual<Magnitude<double>>& r)
 {
     using M = Magnitude<double>;
     r = residual(prim, lift<M>(ray.origin), lift<M>(ray.direction), M{double(t)}, part);
-    return r.f.d <= 6 && r.df.d <= 6 && r.a.d <= 6;
+    const int degree = std::max(r.f.d, std::max(r.df.d, r.a.d));
+    if (degree <= 6) return true;
+    if constexpr (lists_its_lengths<Prim>::value) {
+        if (degree > 15) return false;
+        bool within = zero_or_within_2_64(ray.origin) && zero_or_within_2_64(ray.direction) && zero_or_within_2_64(t);
+        each_length(prim, [&](const auto& x) { within = within && zero_or_within_2_64(x); });
+        return within;
+    }
+    return false;
 }
 
-// How far the exact root can be from t (certify_root), rounded up to T.
+// How far the exact root can be from t (certify_root), rounded up to T. Flattened, as are the two
+// below: left to GCC -O3, the residual in Magnitude<double> was a call that returned its 96 bytes
+// through memory and counted k, p, d at run time (rayq-bench, float sphere under `fast`, full
+// record: 10% slower than Bounded<float> despite 12% fewer instructions).
 template <class Prim>
-inline scalar_t<Prim> certified_root_distance(const Ray<scalar_t<Prim>>& ray, const Prim& prim, scalar_t<Prim> t, Part part)
+RAYQ_FLATTEN inline scalar_t<Prim> certified_root_distance(const Ray<scalar_t<Prim>>& ray, const Prim& prim, scalar_t<Prim> t, Part part)
 {
     using T = scalar_t<Prim>;
     if constexpr (std::is_same_v<certificate_scalar_t<Prim>, double> && std::is_same_v<T, float>) {
@@ -147,7 +185,7 @@ inline scalar_t<Prim> certified_root_distance(const Ray<scalar_t<Prim>>& ray, co
         if (static_residual(ray, prim, t, part, r)) {
             const double h = certify_root(Residual<Bounded<double>>{bounded(r.f), bounded(r.df), bounded(r.a)});
             const float hf = float(h);
-            return double(hf) < h ? std::nextafter(hf, std::numeric_limits<float>::infinity()) : hf;
+            return double(hf) < h ? next_up(hf) : hf;
         }
     }
     return certify_root(residual(prim, exact(ray.origin), exact(ray.direction), Bounded<T>{t}, part));
@@ -155,7 +193,7 @@ inline scalar_t<Prim> certified_root_distance(const Ray<scalar_t<Prim>>& ray, co
 
 // Whether F(t) < 0 for certain: t lies inside the surface.
 template <class Prim>
-inline bool certainly_inside(const Ray<scalar_t<Prim>>& ray, const Prim& prim, scalar_t<Prim> t)
+RAYQ_FLATTEN inline bool certainly_inside(const Ray<scalar_t<Prim>>& ray, const Prim& prim, scalar_t<Prim> t)
 {
     using T = scalar_t<Prim>;
     if constexpr (std::is_same_v<certificate_scalar_t<Prim>, double> && std::is_same_v<T, float>) {
@@ -168,7 +206,7 @@ inline bool certainly_inside(const Ray<scalar_t<Prim>>& ray, const Prim& prim, s
 
 // Whether every root within t_error of t lies on the trimmed part (trim_margins).
 template <class Prim>
-inline bool certainly_on_part(const Ray<scalar_t<Prim>>& ray, const Prim& prim, scalar_t<Prim> t, scalar_t<Prim> t_error, Part part)
+RAYQ_FLATTEN inline bool certainly_on_part(const Ray<scalar_t<Prim>>& ray, const Prim& prim, scalar_t<Prim> t, scalar_t<Prim> t_error, Part part)
 {
     using W = certificate_scalar_t<Prim>;
     using N = Bounded<W>;

@@ -121,7 +121,7 @@ struct Residual {
 
 // The plane through `point` with normal n: F = (o + t·d − point)·n, linear.
 template <class N, class T>
-inline Residual<N> plane_residual(const Vec3<T>& point, const Vec3<N>& n, const Vec3<N>& o, const Vec3<N>& d, N t)
+RAYQ_INLINE Residual<N> plane_residual(const Vec3<T>& point, const Vec3<N>& n, const Vec3<N>& o, const Vec3<N>& d, N t)
 {
     return {dot(o - lift<N>(point) + t * d, n), dot(d, n), N{T(0)}};
 }
