@@ -12,7 +12,7 @@ class CertifiedBoundTest : public ::testing::Test {};
 TYPED_TEST_SUITE(CertifiedBoundTest, AllConfigs, ConfigNames);
 
 template <class Policy, class Prim>
-void check_bound(Policy policy, const Prim& prim, const char* name, std::uint64_t seed)
+void check_bound(Policy policy, const Prim& prim, const char* name, std::uint64_t seed, double world = 1, double squash_x = 1)
 {
     using T = scalar_t<Prim>;
     std::mt19937_64 rng(seed);
@@ -23,9 +23,9 @@ void check_bound(Policy policy, const Prim& prim, const char* name, std::uint64_
     std::vector<double> ratios;
     for (int i = 0; i < 20000; ++i) {
         const double scale = std::pow(10.0, lg(rng));
-        const Vec3<T> o{T(4 * u(rng)), T(4 * u(rng)), T(4 * u(rng))};
-        const Vec3<T> aim{T(1.2 * u(rng)), T(1.2 * u(rng)), T(1.2 * u(rng))};
-        const Vec3<T> d{T((aim.x - o.x) * scale), T((aim.y - o.y) * scale), T((aim.z - o.z) * scale)};
+        const Vec3<T> o{T(4 * world * u(rng)), T(4 * world * u(rng)), T(4 * world * u(rng))};
+        const Vec3<T> aim{T(1.2 * world * u(rng)), T(1.2 * world * u(rng)), T(1.2 * world * u(rng))};
+        const Vec3<T> d{T((aim.x - o.x) * scale * squash_x), T((aim.y - o.y) * scale), T((aim.z - o.z) * scale)};
         const Ray<T> r{o, d};
         const auto h = intersect(policy, r, prim);
         if (!h) continue;
@@ -81,6 +81,22 @@ TYPED_TEST(CertifiedBoundTest, ExactRootLiesWithinTError)
     check_bound(p, transformed(Cylinder<T>{v3<T>(0, 0, -1), v3<T>(0, 0, 1), T(0.5), Caps::both},
                                Affine3<T>::rotation(v3<T>(-1, 2, 0.5), T(1.1), v3<T>(0.1, -0.2, 0))),
                 "transformed cylinder", 13);
+}
+
+// The cone's surface residual has degree eight: the static filter takes it only where every input
+// is zero or within 2^±64 (query.hpp, static_residual), Bounded elsewhere. Both sides of that
+// line: cones and rays scaled by 2^±12 (within), and rays whose direction's x is 2^-80 of its
+// usual size (a nonzero input below 2^-64).
+TYPED_TEST(CertifiedBoundTest, ConesOnBothSidesOfTheStaticRange)
+{
+    using T = typename TypeParam::T;
+    const auto p = TypeParam::policy;
+    for (const double world : {0x1p-12, 0x1p12}) {
+        const auto at = [&](double x, double y, double z) { return v3<T>(x * world, y * world, z * world); };
+        const std::string name = "cone frustum x2^" + std::to_string(int(std::log2(world)));
+        check_bound(p, Cone<T>{at(-0.3, -0.6, -0.9), T(0.9 * world), at(0.5, 0.4, 0.8), T(0.2 * world), Caps::both}, name.c_str(), 14, world);
+    }
+    check_bound(p, Cone<T>{v3<T>(-0.3, -0.6, -0.9), T(0.9), v3<T>(0.5, 0.4, 0.8), T(0.2), Caps::both}, "cone frustum, d.x tiny", 15, 1, 0x1p-80);
 }
 
 }  // namespace
