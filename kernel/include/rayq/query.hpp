@@ -124,8 +124,9 @@ struct has_static_residual<Prim, std::void_t<decltype(residual(std::declval<cons
 // bits left in the upper ones read as subnormal floats (an x86 microcode assist each;
 // subnormal_operand_test).
 template <class Prim>
-using certificate_scalar_t =
-    std::conditional_t<std::is_same_v<scalar_t<Prim>, float> && has_static_residual<Prim>::value, double, scalar_t<Prim>>;
+constexpr bool certified_in_double = std::is_same_v<scalar_t<Prim>, float> && has_static_residual<Prim>::value;
+template <class Prim>
+using certificate_scalar_t = std::conditional_t<certified_in_double<Prim>, double, scalar_t<Prim>>;
 
 // Whether the primitive lists every length its residual reads (each_length: sphere, cylinder, cone).
 struct AnyLength {
@@ -136,19 +137,6 @@ template <class Prim, class = void>
 struct lists_its_lengths : std::false_type {};
 template <class Prim>
 struct lists_its_lengths<Prim, std::void_t<decltype(each_length(std::declval<const Prim&>(), AnyLength{}))>> : std::true_type {};
-
-// Zero or of magnitude within [2^-64, 2^64] (NaN and infinities are not).
-template <class T>
-RAYQ_INLINE bool zero_or_within_2_64(T x)
-{
-    const double a = std::abs(double(x));
-    return a == 0 || (a >= 0x1p-64 && a <= 0x1p64);
-}
-template <class T>
-RAYQ_INLINE bool zero_or_within_2_64(const Vec3<T>& v)
-{
-    return zero_or_within_2_64(v.x) && zero_or_within_2_64(v.y) && zero_or_within_2_64(v.z);
-}
 
 // The residual at t in the static filter, and whether its guarantee holds: every monomial's
 // nonzero magnitudes multiply within double's normal range (magnitude.hpp). Float inputs keep six
@@ -165,8 +153,9 @@ RAYQ_INLINE bool static_residual(const Ray<scalar_t<Prim>>& ray, const Prim& pri
     if (degree <= 6) return true;
     if constexpr (lists_its_lengths<Prim>::value) {
         if (degree > 15) return false;
-        bool within = zero_or_within_2_64(ray.origin) && zero_or_within_2_64(ray.direction) && zero_or_within_2_64(t);
-        each_length(prim, [&](const auto& x) { within = within && zero_or_within_2_64(x); });
+        bool within = all_evaluated(zero_or_within_exact_range(ray.origin), zero_or_within_exact_range(ray.direction),
+                                    zero_or_within_exact_range(t));
+        each_length(prim, [&](const auto& x) { within = all_evaluated(within, zero_or_within_exact_range(x)); });
         return within;
     }
     return false;
@@ -175,12 +164,13 @@ RAYQ_INLINE bool static_residual(const Ray<scalar_t<Prim>>& ray, const Prim& pri
 // How far the exact root can be from t (certify_root), rounded up to T. Flattened, as are the two
 // below: left to GCC -O3, the residual in Magnitude<double> was a call that returned its 96 bytes
 // through memory and counted k, p, d at run time (rayq-bench, float sphere under `fast`, full
-// record: 10% slower than Bounded<float> despite 12% fewer instructions).
+// record: 10% slower than Bounded<float> despite 12% fewer instructions). The cylinder's, cone's
+// and plane_residual's residuals are forced inline besides: GCC called them "not inlinable" there.
 template <class Prim>
 RAYQ_FLATTEN inline scalar_t<Prim> certified_root_distance(const Ray<scalar_t<Prim>>& ray, const Prim& prim, scalar_t<Prim> t, Part part)
 {
     using T = scalar_t<Prim>;
-    if constexpr (std::is_same_v<certificate_scalar_t<Prim>, double> && std::is_same_v<T, float>) {
+    if constexpr (certified_in_double<Prim>) {
         Residual<Magnitude<double>> r;
         if (static_residual(ray, prim, t, part, r)) {
             const double h = certify_root(Residual<Bounded<double>>{bounded(r.f), bounded(r.df), bounded(r.a)});
@@ -196,7 +186,7 @@ template <class Prim>
 RAYQ_FLATTEN inline bool certainly_inside(const Ray<scalar_t<Prim>>& ray, const Prim& prim, scalar_t<Prim> t)
 {
     using T = scalar_t<Prim>;
-    if constexpr (std::is_same_v<certificate_scalar_t<Prim>, double> && std::is_same_v<T, float>) {
+    if constexpr (certified_in_double<Prim>) {
         Residual<Magnitude<double>> r;
         if (static_residual(ray, prim, t, Part::surface, r)) return certain_sign(r.f) < 0;
     }

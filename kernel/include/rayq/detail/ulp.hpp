@@ -85,4 +85,30 @@ RAYQ_INLINE T smaller_half_gap(T x)
     return (std::abs(x) - from_bits<T>(magnitude_bits(x) - 1)) / T(2);
 }
 
+// x = ±0 or lo <= |x| <= hi (lo, hi positive and finite), decided on the bits, where |x|'s order
+// is the unsigned integers' (NaN above infinity): one subtraction and comparison, without
+// branches, so that the checks of a primitive's ten or more inputs combine into one test (all_evaluated)
+// (callgrind, SSE2, accurate double hits: sphere 1,504 -> 1,479 instructions, capped cylinder
+// 3,441 -> 3,421).
+template <class T>
+RAYQ_INLINE bool zero_or_between(T x, T lo, T hi)
+{
+    const auto magnitude = magnitude_bits(x);
+    return (magnitude - bits_of(lo) <= bits_of(hi) - bits_of(lo)) | (magnitude == 0);
+}
+// A value the exact expansions take as it is: zero, or its magnitude within range.
+template <class T>
+RAYQ_INLINE bool zero_or_within_exact_range(T x) { return zero_or_between(x, T(0x1p-64), T(0x1p64)); }
+// Every condition, each evaluated (no short circuit): one branch for all of them.
+template <class... Conditions>
+RAYQ_INLINE bool all_evaluated(Conditions... c)
+{
+    return (int(c) & ...) != 0;
+}
+template <class T>
+RAYQ_INLINE bool zero_or_within_exact_range(const Vec3<T>& v)
+{
+    return all_evaluated(zero_or_within_exact_range(v.x), zero_or_within_exact_range(v.y), zero_or_within_exact_range(v.z));
+}
+
 }  // namespace rayq::detail
