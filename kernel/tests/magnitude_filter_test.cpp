@@ -21,6 +21,41 @@ namespace {
 using detail::Expansion;
 using detail::Magnitude;
 
+// The quick lanes write into a Crossings and say whether they decided; here as an optional, none
+// where a lane declines.
+template <class T, class Lane>
+std::optional<Crossings<T>> lane_answer(Lane&& lane)
+{
+    Crossings<T> out;
+    if (lane(out)) return out;
+    return std::nullopt;
+}
+template <class Prim, class T = scalar_t<Prim>>
+std::optional<Crossings<T>> quick_curved(const Ray<T>& r, const Prim& p, bool axial, bool capped, detail::CapEnds ends, int limit)
+{
+    return lane_answer<T>([&](Crossings<T>& out) { return detail::quick_curved_crossings(r, p, axial, capped, ends, limit, out); });
+}
+template <class Prim, class T = scalar_t<Prim>>
+std::optional<Crossings<T>> running_bound(const Ray<T>& r, const Prim& p, bool axial, bool capped, detail::CapEnds ends, int limit)
+{
+    return lane_answer<T>([&](Crossings<T>& out) { return detail::running_bound_crossings(r, p, axial, capped, ends, limit, out); });
+}
+template <class Prim, class T = scalar_t<Prim>>
+std::optional<Crossings<T>> axial_first(const Ray<T>& r, const Prim& p, bool capped, detail::CapEnds ends, int limit)
+{
+    return lane_answer<T>([&](Crossings<T>& out) { return detail::axial_first_crossing(r, p, capped, ends, limit, out); });
+}
+template <class Prim>
+std::optional<Crossings<double>> quick_sphere(const Ray<double>& r, const Prim& p, const detail::PlainQuadratic& q, int limit)
+{
+    return lane_answer<double>([&](Crossings<double>& out) { return detail::quick_sphere_crossings(r, p, q, limit, out); });
+}
+template <class T, class Quick, class Coef>
+std::optional<Crossings<T>> quick_flat_lane(const Ray<T>& r, const Quick& quick, const Coef& coef)
+{
+    return lane_answer<T>([&](Crossings<T>& out) { return detail::quick_flat_crossing(r, quick, coef, out); });
+}
+
 // A T with a random sign, full significand and exponent in [lo, hi]; 0 one time in `zeros`.
 template <class T>
 T random_number(std::mt19937_64& rng, int lo, int hi, int zeros = 0)
@@ -313,9 +348,9 @@ std::optional<int> sphere_lane_answer(const Ray<T>& r, const Sphere<T>& s, int l
     if constexpr (std::is_same_v<T, double>) {
         const detail::PlainQuadratic q = detail::plain_quadratic(r, s);
         if (q.d > 0.0)
-            if (const auto own = detail::quick_sphere_crossings(r, s, q, limit)) expect_exact(*own, "sphere lane"), answered = true;
+            if (const auto own = quick_sphere(r, s, q, limit)) expect_exact(*own, "sphere lane"), answered = true;
     }
-    if (const auto quick = detail::quick_curved_crossings(r, s, false, false, {false, false}, limit)) expect_exact(*quick, "filter lane"), answered = true;
+    if (const auto quick = quick_curved(r, s, false, false, {false, false}, limit)) expect_exact(*quick, "filter lane"), answered = true;
     if (!answered) return std::nullopt;
     return exact.count;
 }
@@ -433,14 +468,14 @@ TEST(MagnitudeFilter, QuickLaneDeclinesOutOfRange)
 {
     const Ray<float> r{{0.0f, 0.0f, -4.0f}, {0.0f, 0.0f, 1.0f}};
     const float inf = std::numeric_limits<float>::infinity(), nan = std::numeric_limits<float>::quiet_NaN();
-    EXPECT_TRUE(detail::quick_curved_crossings(r, Sphere<float>{{0.0f, 0.0f, 0.0f}, 1.0f}, false, false, {false, false}, 2));
-    EXPECT_TRUE(detail::quick_curved_crossings(r, Sphere<float>{{0.0f, 0.0f, 0.0f}, 0x1p81f}, false, false, {false, false}, 2));
-    EXPECT_TRUE(detail::quick_curved_crossings(r, Sphere<float>{{0.0f, 0.0f, 0.0f}, 0x1p120f}, false, false, {false, false}, 2));
+    EXPECT_TRUE(quick_curved(r, Sphere<float>{{0.0f, 0.0f, 0.0f}, 1.0f}, false, false, {false, false}, 2));
+    EXPECT_TRUE(quick_curved(r, Sphere<float>{{0.0f, 0.0f, 0.0f}, 0x1p81f}, false, false, {false, false}, 2));
+    EXPECT_TRUE(quick_curved(r, Sphere<float>{{0.0f, 0.0f, 0.0f}, 0x1p120f}, false, false, {false, false}, 2));
     // From 2^120 away along a direction of length 2^100: b² ~ 2^442.
-    EXPECT_FALSE(detail::quick_curved_crossings(Ray<float>{{0.0f, 0.0f, -0x1p120f}, {0.0f, 0.0f, 0x1p100f}}, Sphere<float>{{0.0f, 0.0f, 0.0f}, 1.0f}, false, false, {false, false}, 2));
-    EXPECT_FALSE(detail::quick_curved_crossings(r, Sphere<float>{{0.0f, 0.0f, 0.0f}, inf}, false, false, {false, false}, 2));
-    EXPECT_FALSE(detail::quick_curved_crossings(r, Sphere<float>{{nan, 0.0f, 0.0f}, 1.0f}, false, false, {false, false}, 2));
-    EXPECT_FALSE(detail::quick_curved_crossings(Ray<float>{{0.0f, 0.0f, -4.0f}, {0.0f, 0.0f, inf}}, Sphere<float>{{0.0f, 0.0f, 0.0f}, 1.0f}, false, false, {false, false}, 2));
+    EXPECT_FALSE(quick_curved(Ray<float>{{0.0f, 0.0f, -0x1p120f}, {0.0f, 0.0f, 0x1p100f}}, Sphere<float>{{0.0f, 0.0f, 0.0f}, 1.0f}, false, false, {false, false}, 2));
+    EXPECT_FALSE(quick_curved(r, Sphere<float>{{0.0f, 0.0f, 0.0f}, inf}, false, false, {false, false}, 2));
+    EXPECT_FALSE(quick_curved(r, Sphere<float>{{nan, 0.0f, 0.0f}, 1.0f}, false, false, {false, false}, 2));
+    EXPECT_FALSE(quick_curved(Ray<float>{{0.0f, 0.0f, -4.0f}, {0.0f, 0.0f, inf}}, Sphere<float>{{0.0f, 0.0f, 0.0f}, 1.0f}, false, false, {false, false}, 2));
 }
 
 // The closest hit and all crossings take the same lane: with a direction component 2^-63 beside
@@ -473,7 +508,7 @@ void expect_flat_lane_agrees(const char* what, const Ray<float>& r, const FloatP
     const Crossings<double> reference = crossings(accurate, wide_ray, wide);
     const Crossings<float> full = crossings(accurate, r, prim);
     const std::optional<Crossings<float>> lane =
-        detail::quick_flat_crossing(r, quick, detail::PartCoefficients<FloatPrim>{&prim, &r, Part::surface});
+        quick_flat_lane(r, quick, detail::PartCoefficients<FloatPrim>{&prim, &r, Part::surface});
     answered += lane.has_value();
     for (const Crossings<float>* c : {&full, lane ? &*lane : nullptr}) {
         if (!c) continue;
@@ -561,11 +596,11 @@ void expect_double_lane_agrees(const char* what, const Ray<double>& r, const Pri
     constexpr double s = 0x1p200;
     const Ray<double> far{s * r.origin, r.direction, s * r.tmin, s * r.tmax};
     const Crossings<double> reference = crossings(accurate, far, scaled_lengths(prim, s));
-    ASSERT_TRUE(!detail::quick_flat_crossing(far, [&] { return detail::quick_flat(far, scaled_lengths(prim, s)); },
+    ASSERT_TRUE(!quick_flat_lane(far, [&] { return detail::quick_flat(far, scaled_lengths(prim, s)); },
                                              detail::PartCoefficients<Prim>{&prim, &far, Part::surface}))
         << "the reference took the lane";
     const std::optional<Crossings<double>> lane =
-        detail::quick_flat_crossing(r, [&] { return detail::quick_flat(r, prim); }, detail::PartCoefficients<Prim>{&prim, &r, Part::surface});
+        quick_flat_lane(r, [&] { return detail::quick_flat(r, prim); }, detail::PartCoefficients<Prim>{&prim, &r, Part::surface});
     answered += lane.has_value();
     const Crossings<double> full = crossings(accurate, r, prim);
     for (const Crossings<double>* c : {&full, lane ? &*lane : nullptr}) {
@@ -591,7 +626,7 @@ void expect_lane_declines_on_the_boundary()
     const Disk<T> disk{a, {T(0), T(0), T(1)}, T(0.5)};
     const auto check = [&](const char* what, const auto& prim) {
         using Prim = std::decay_t<decltype(prim)>;
-        const auto lane = detail::quick_flat_crossing(r, [&] { return detail::quick_flat(r, prim); },
+        const auto lane = quick_flat_lane(r, [&] { return detail::quick_flat(r, prim); },
                                                       detail::PartCoefficients<Prim>{&prim, &r, Part::surface});
         EXPECT_FALSE(lane.has_value()) << what;
         const Crossings<T> c = crossings(accurate, r, prim);
@@ -650,8 +685,8 @@ void expect_axial_lane_agrees()
             const int type = what[1] == 'y' ? 0 : 1;
             for (const int limit : {1, 2}) {
                 ++rays, ++asked[type];
-                auto quick = detail::quick_curved_crossings(r, prim, true, prim.caps == Caps::both, ends, limit);
-                if (!quick) quick = detail::running_bound_crossings(r, prim, true, prim.caps == Caps::both, ends, limit);
+                auto quick = quick_curved(r, prim, true, prim.caps == Caps::both, ends, limit);
+                if (!quick) quick = running_bound(r, prim, true, prim.caps == Caps::both, ends, limit);
                 if (!quick) continue;
                 ++answered, ++decided[type];
                 const auto exact = detail::exact_curved_crossings_in_unit(r, prim, true, prim.caps == Caps::both, ends, limit, reach);
@@ -721,7 +756,7 @@ TEST(MagnitudeFilter, DoubleAxialLaneAgreesNearRimsAndTangency)
         if (i % 5 == 1) r.tmax = 2.9;  // ending short of the point near the surface: often no crossing
         const auto check = [&](const auto& prim, detail::CapEnds ends) {
             ++rays;
-            const auto lane = detail::axial_first_crossing(r, prim, prim.caps == Caps::both, ends, 1);
+            const auto lane = axial_first(r, prim, prim.caps == Caps::both, ends, 1);
             if (!lane) return;
             ++answered;
             const auto exact = detail::exact_curved_crossings_in_unit(r, prim, true, prim.caps == Caps::both, ends, 1, detail::reach_of(r, prim));

@@ -323,15 +323,14 @@ inline bool may_enter_window(Policy, const Ray<scalar_t<Prim>>& ray, const Prim&
     return !(c.t + certified_root_distance(ray, prim, c.t, c.part) <= ray.tmin);
 }
 
-// The first crossing in the window as a hit; its bound covers every earlier crossing that may
-// exactly lie in the window.
+// The first crossing in the window as a hit, written into a fresh record h (write_hit); its bound
+// covers every earlier crossing that may exactly lie in the window.
 template <class Policy, class Prim>
-inline Hit<scalar_t<Prim>> first_hit(Policy policy, const Ray<scalar_t<Prim>>& ray, const Prim& prim,
-                                     const Crossing<scalar_t<Prim>>& c, bool earlier_may_count, HitFields fields)
+inline void write_first_hit(Policy policy, const Ray<scalar_t<Prim>>& ray, const Prim& prim, const Crossing<scalar_t<Prim>>& c,
+                            bool earlier_may_count, HitFields fields, Hit<scalar_t<Prim>>& h)
 {
-    using T = scalar_t<Prim>;
-    Hit<T> h = make_hit(policy, ray, prim, c, fields);
-    if (!wants(fields, HitFields::bounds)) return h;
+    write_hit(policy, ray, prim, c, fields, h);
+    if (!wants(fields, HitFields::bounds)) return;
     // A first hit that leaves the surface says the window starts inside (F(tmin) < 0): if that is
     // not certain, an entering root before it may have been lost (cancellation in the fast
     // formula, a far-away primitive in float).
@@ -340,6 +339,14 @@ inline Hit<scalar_t<Prim>> first_hit(Policy policy, const Ray<scalar_t<Prim>>& r
         earlier_may_count = earlier_may_count || !certainly_inside(ray, prim, ray.tmin);
     }
     if (earlier_may_count) h.t_error = std::max(h.t_error, grow(c.t - ray.tmin));
+}
+
+template <class Policy, class Prim>
+inline Hit<scalar_t<Prim>> first_hit(Policy policy, const Ray<scalar_t<Prim>>& ray, const Prim& prim,
+                                     const Crossing<scalar_t<Prim>>& c, bool earlier_may_count, HitFields fields)
+{
+    Hit<scalar_t<Prim>> h{c.t};
+    write_first_hit(policy, ray, prim, c, earlier_may_count, fields, h);
     return h;
 }
 
@@ -389,14 +396,21 @@ template <class Policy, class Prim, std::enable_if_t<is_policy_v<Policy> && is_p
 inline std::optional<Hit<scalar_t<Prim>>> intersect(Policy policy, const Ray<scalar_t<Prim>>& ray, const Prim& prim,
                                                     HitFields fields = HitFields::all)
 {
-    if (!detail::accepts(ray, prim)) return std::nullopt;
+    // The record is written where it is returned (every return names `out`: NRVO), not built in a
+    // Hit and copied: GCC copied that one in 16-byte loads of fields just stored as 8-, 4- and 2-byte
+    // pieces, store-forwarding stalls on every hit (as fill_scene_hit's, scene.hpp).
+    std::optional<Hit<scalar_t<Prim>>> out;
+    if (!detail::accepts(ray, prim)) return out;
     bool earlier_may_count = false;
     for (const auto& c : detail::leading_crossings(policy, ray, prim)) {
-        if (detail::in_window(ray, c.t)) return detail::first_hit(policy, ray, prim, c, earlier_may_count, fields);
+        if (detail::in_window(ray, c.t)) {
+            detail::write_first_hit(policy, ray, prim, c, earlier_may_count, fields, out.emplace());
+            return out;
+        }
         // Only the bound needs to know whether an excluded crossing may exactly lie in the window.
         earlier_may_count = earlier_may_count || (wants(fields, HitFields::bounds) && detail::may_enter_window(policy, ray, prim, c));
     }
-    return std::nullopt;
+    return out;
 }
 
 template <class Policy, class Prim, std::enable_if_t<is_policy_v<Policy> && is_primitive_v<Prim>, int> = 0>

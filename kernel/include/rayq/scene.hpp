@@ -368,7 +368,7 @@ inline void certified_scene_hit(Policy policy, const Ray<scalar_t<Prim>>& ray, c
         if (!(x.t < c.t)) break;  // ascending: none before it
         earlier_may_count = earlier_may_count || in_window(ray, x.t) || may_enter_window(policy, ray, prim, x);
     }
-    out = first_hit(policy, ray, prim, c, earlier_may_count, fields);
+    write_first_hit(policy, ray, prim, c, earlier_may_count, fields, out);  // out is fresh: fill_scene_hit's callers make it
 }
 
 // Writes the record of `ref` into out.hit, out being where the caller keeps it (intersect()'s

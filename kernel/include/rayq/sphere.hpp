@@ -108,17 +108,20 @@ RAYQ_INLINE detail::Estimate<T> quick_residual_f(const Sphere<T>& s, const Ray<T
 template <class T>
 inline Crossings<T> crossings(accurate_policy, const Ray<T>& ray, const Sphere<T>& s, int limit = 2)
 {
+    // Every return names `out` (NRVO): written where the query reads it (exact_curved_crossings).
+    Crossings<T> out;
     if constexpr (std::is_same_v<T, double>) {
         const detail::PlainQuadratic q = detail::plain_quadratic(ray, s);
         if (q.d > T(0)) {
-            if (const auto quick = detail::quick_sphere_crossings(ray, s, q, limit)) return *quick;
+            if (detail::quick_sphere_crossings(ray, s, q, limit, out)) return out;
         } else if (batch::exactly_missed_sphere(ray, s.center, s.radius)) {
-            return {};
+            return out;
         }
     } else if (batch::exactly_missed_sphere(ray, s.center, s.radius)) {
-        return {};
+        return out;
     }
-    return detail::exact_curved_crossings(ray, s, false, false, {false, false}, limit);
+    detail::exact_curved_crossings(ray, s, false, false, {false, false}, limit, out);
+    return out;
 }
 
 template <class T>

@@ -232,10 +232,12 @@ private:
 // Crossings of a sphere-like (no caps) or axial (slab-clipped, open or capped) curved primitive,
 // with the same interval logic as the floating-point path but exact comparisons. Only the first
 // `limit` crossings inside the window are returned: each one costs a correctly rounded root.
-// `Solid` is ExactSolid or the quick lane's QuickSolid.
+// `Solid` is ExactSolid or the quick lane's QuickSolid. Written into `out` (see
+// exact_curved_crossings).
 template <class T, class Solid>
-inline Crossings<T> solid_crossings(const Solid& solid, bool axial, bool capped, CapEnds ends, int limit)
+inline void solid_crossings(const Solid& solid, bool axial, bool capped, CapEnds ends, int limit, Crossings<T>& out)
 {
+    out.count = 0;
     End enter[2], exit[2];
     const int spans = solid.side_spans(enter, exit);
     struct Candidate {
@@ -246,7 +248,7 @@ inline Crossings<T> solid_crossings(const Solid& solid, bool axial, bool capped,
     Candidate found[4];
     int n = 0;
     End slab_in{EndKind::neg_inf}, slab_out{EndKind::pos_inf};
-    if (axial && !solid.slab(slab_in, slab_out)) return {};
+    if (axial && !solid.slab(slab_in, slab_out)) return;
     for (int i = 0; i < spans; ++i) {
         if (!axial) {
             found[n++] = {enter[i], Part::surface, true};
@@ -270,18 +272,18 @@ inline Crossings<T> solid_crossings(const Solid& solid, bool axial, bool capped,
     // The ends are in ascending exact order, so their correctly rounded values are too (before
     // Dyadic, expansions that underflowed broke this: the axial and transformed libFuzzer
     // harnesses' ascending invariant on cones of size 2^-511 and with a 3·2^-1074 apex coordinate).
-    Crossings<T> out;
     for (int i = 0; i < n && out.count < limit; ++i)
         if (found[i].end.finite() && solid.in_window(found[i].end))
             out.add(solid.value(found[i].end), found[i].part, found[i].entering, true);
-    return out;
 }
 
 template <class Prim>
 inline Crossings<scalar_t<Prim>> exact_curved_crossings_unscaled(const Ray<scalar_t<Prim>>& ray, const Prim& prim, bool axial, bool capped,
                                                                   CapEnds ends, int limit)
 {
-    return solid_crossings<scalar_t<Prim>>(ExactSolid<Prim>(ray, prim, axial), axial, capped, ends, limit);
+    Crossings<scalar_t<Prim>> out;
+    solid_crossings(ExactSolid<Prim>(ray, prim, axial), axial, capped, ends, limit, out);
+    return out;
 }
 
 // x·2^k, and whether that is exact (no overflow, no bits lost to underflow).
@@ -803,32 +805,30 @@ private:
 };
 
 // The crossings of a solid between two roots (a sphere: a > 0), from `root(which)`, each root
-// correctly rounded or none; none when a root is needed and not given, or equals a window end (a
-// float ≠ x on one side of x puts the exact root on that side, past its midpoint). The exit is
-// rounded only when it can count (a double's costs a Newton step).
+// correctly rounded or none, written into `out`; false when a root is needed and not given, or
+// equals a window end (a float ≠ x on one side of x puts the exact root on that side, past its
+// midpoint). The exit is rounded only when it can count (a double's costs a Newton step).
 // Not forced inline: twice here GCC 12 left calls inside a forced-inline callee of a flattened
 // function out of line. Forced, it left quick_newton_rounded out of line in a double sphere's lane
 // (1,255 against 1,179 instructions per hit, callgrind), and forcing that inline in turn left a
 // double plane's residual and Newton step out of line in rayq-bench (accurate 264 -> 347 us).
-// Built in the returned object (every return names `out`: NRVO): a local Crossings copied out at
-// the end was read back by 16-byte loads across its narrower stores, a failed store-to-load
-// forwarding that took 6% of a double sphere's hit samples (perf; rayq-bench, SSE2, accurate ÷
-// fast double sphere, three alternating runs: 1.277, 1.159, 1.239 -> 1.214, 1.220, 1.231).
+// Written into the caller's object, the one the query reads (exact_curved_crossings): a local
+// Crossings copied out at the end was read back by 16-byte loads across its narrower stores, a
+// failed store-to-load forwarding that took 6% of a double sphere's hit samples (perf;
+// rayq-bench, SSE2, accurate ÷ fast double sphere, three alternating runs: 1.277, 1.159, 1.239 ->
+// 1.214, 1.220, 1.231); an optional returned in place was still copied once by its callers.
 template <class T, class Root>
-inline std::optional<Crossings<T>> two_root_crossings(const Ray<T>& ray, int limit, Root root)
+inline bool two_root_crossings(const Ray<T>& ray, int limit, Root root, Crossings<T>& out)
 {
-    std::optional<Crossings<T>> out(std::in_place);
+    out.count = 0;
     const std::optional<T> t0 = root(0);
-    if (!t0 || *t0 == ray.tmin || *t0 == ray.tmax) {
-        out.reset();
-        return out;
-    }
-    if (ray.tmin < *t0 && *t0 < ray.tmax) out->add(*t0, Part::surface, true, true);
-    if (out->count == limit || !(*t0 < ray.tmax)) return out;
+    if (!t0 || *t0 == ray.tmin || *t0 == ray.tmax) return false;
+    if (ray.tmin < *t0 && *t0 < ray.tmax) out.add(*t0, Part::surface, true, true);
+    if (out.count == limit || !(*t0 < ray.tmax)) return true;
     const std::optional<T> t1 = root(1);
-    if (!t1 || *t1 == ray.tmin || *t1 == ray.tmax) out.reset();
-    else if (ray.tmin < *t1 && *t1 < ray.tmax) out->add(*t1, Part::surface, false, true);
-    return out;
+    if (!t1 || *t1 == ray.tmin || *t1 == ray.tmax) return false;
+    if (ray.tmin < *t1 && *t1 < ray.tmax) out.add(*t1, Part::surface, false, true);
+    return true;
 }
 
 // The sign of a residual F at every point of [t − h, t + h], from r, its value at t in the static
@@ -912,22 +912,22 @@ RAYQ_INLINE SlabCell slab_cell(const Ray<T>& ray, const Prim& prim, T t)
 //   outside the slab, so the first crossing is τ1, leaving through the side, when τ1 lies within
 //   the slab (its own Newton step), and none when τ1 lies past it.
 // Every crossing lies within the slab, so none when its entry (t_c) or the first root is beyond
-// the window's end. None where any of this is not certain, where the first crossing is at or
-// behind the window's start, or for more than one crossing: the quick lane then decides.
-// Inputs within the static range.
+// the window's end. True with the crossing (or none) in `out`; false where any of this is not
+// certain, where the first crossing is at or behind the window's start, or for more than one
+// crossing: the quick lane then decides. Inputs within the static range.
 template <class Prim, class T = scalar_t<Prim>>
-inline std::optional<Crossings<T>> axial_first_crossing(const Ray<T>& ray, const Prim& prim, bool capped, CapEnds ends, int limit)
+inline bool axial_first_crossing(const Ray<T>& ray, const Prim& prim, bool capped, CapEnds ends, int limit, Crossings<T>& out)
 {
-    if (limit != 1) return std::nullopt;
+    if (limit != 1) return false;
     const PartCoefficients<Prim> side{&prim, &ray, Part::surface}, cap0{&prim, &ray, Part::cap0};
     const Magnitude<T> zero{T(0), T(0), 0, 0, 0};
-    const auto first = [&](T t, Part part, bool entering) -> std::optional<Crossings<T>> {
-        if (t == ray.tmin || t == ray.tmax) return std::nullopt;
-        if (t > ray.tmax) return Crossings<T>{};
-        if (!(ray.tmin < t)) return std::nullopt;
-        Crossings<T> out;
+    out.count = 0;
+    const auto first = [&](T t, Part part, bool entering) {
+        if (t == ray.tmin || t == ray.tmax) return false;
+        if (t > ray.tmax) return true;
+        if (!(ray.tmin < t)) return false;
         out.add(t, part, entering, true);
-        return out;
+        return true;
     };
     // A root of the side, certified, with a > 0 certain.
     const Residual<T> r = side.at(T(0));
@@ -945,42 +945,42 @@ inline std::optional<Crossings<T>> axial_first_crossing(const Ray<T>& ray, const
         const Vec3<T> axis = prim.p1 - prim.p0;
         if (height > T(0) && height < dot(axis, axis)) {
             const std::optional<T> t0 = side_root(0, estimate);
-            if (!t0) return std::nullopt;
+            if (!t0) return false;
             const SlabCell cell = slab_cell(ray, prim, *t0);
             if (cell.inside()) return first(*t0, Part::surface, true);
-            if (cell.past()) return Crossings<T>{};
-            return std::nullopt;
+            if (cell.past()) return true;
+            return false;
         }
     }
     const Residual<T> rise = cap0.at(T(0));  // d·A
-    if (!(rise.df != T(0))) return std::nullopt;
+    if (!(rise.df != T(0))) return false;
     const Part entry = rise.df > T(0) ? Part::cap0 : Part::cap1;
     // An end no cap closes (a cone's apex) is a point: the side is never certainly negative over
     // its plane's cell below, so this only saves the plane's Newton step.
-    if (capped && !ends.closes(entry)) return std::nullopt;
+    if (capped && !ends.closes(entry)) return false;
     const PartCoefficients<Prim> plane{&prim, &ray, entry};
     const Residual<T> e = entry == Part::cap0 ? rise : plane.at(T(0));
     const T plane_estimate = -e.f / e.df;
-    if (!(side.at(plane_estimate).f < T(0))) return std::nullopt;  // the estimate misses the end's disk
-    if (certain_sign(cap0(zero).df) != (rise.df > T(0) ? 1 : -1)) return std::nullopt;
+    if (!(side.at(plane_estimate).f < T(0))) return false;  // the estimate misses the end's disk
+    if (certain_sign(cap0(zero).df) != (rise.df > T(0) ? 1 : -1)) return false;
     if (capped) {
         const std::optional<T> tc = quick_newton_rounded<T>(plane, 0, 0, plane_estimate);
-        if (!tc || !within_static_range(*tc) || sign_over_cell(side.at(Magnitude<T>{*tc}), *tc) >= 0) return std::nullopt;
+        if (!tc || !within_static_range(*tc) || sign_over_cell(side.at(Magnitude<T>{*tc}), *tc) >= 0) return false;
         return first(*tc, entry, true);
     }
-    if (!two_roots) return std::nullopt;  // open: the answer is the side's larger root τ1
+    if (!two_roots) return false;  // open: the answer is the side's larger root τ1
     // Open, t_c is no crossing: the side certainly negative over an interval that holds it is
     // enough, without rounding it (pt.cpp, SSE2, accurate open-cylinder hits: 2,439 -> 2,344
     // instructions by callgrind, 244 -> 233 ns; hits and misses 134 -> 130 ns per ray, fast's 103).
-    if (!within_static_range(plane_estimate)) return std::nullopt;
+    if (!within_static_range(plane_estimate)) return false;
     const T reach = linear_root_reach(plane(zero), plane_estimate);
-    if (sign_over_span(side.at(Magnitude<T>{plane_estimate}), reach) >= 0) return std::nullopt;
+    if (sign_over_span(side.at(Magnitude<T>{plane_estimate}), reach) >= 0) return false;
     const std::optional<T> t1 = side_root(1, root_estimate(r.a, r.df, r.f, d, 1, 1));
-    if (!t1) return std::nullopt;
+    if (!t1) return false;
     const SlabCell cell = slab_cell(ray, prim, *t1);
     if (cell.inside()) return first(*t1, Part::surface, false);
-    if (cell.past()) return Crossings<T>{};
-    return std::nullopt;
+    if (cell.past()) return true;
+    return false;
 }
 
 // ExactSolid's interface for the quick lane, on QuickQuadratic parts. Its ends are compared
@@ -1063,37 +1063,39 @@ private:
 // everything is inlined (flatten) so that the filter's counts fold to constants. Double inputs
 // must lie within its range (within_static_range); float ones always do.
 template <bool axial, class Prim, class F = Magnitude<double>, class T = scalar_t<Prim>>
-RAYQ_FLATTEN inline std::optional<Crossings<T>> quick_solid_crossings(const Ray<T>& ray, const Prim& prim, bool capped, CapEnds ends,
-                                                                      int limit)
+RAYQ_FLATTEN inline bool quick_solid_crossings(const Ray<T>& ray, const Prim& prim, bool capped, CapEnds ends, int limit,
+                                               Crossings<T>& out)
 {
     if constexpr (!std::is_same_v<T, float> && is_magnitude<F>::value) {
-        if (!inputs_within_static_range(ray, prim)) return std::nullopt;
+        if (!inputs_within_static_range(ray, prim)) return false;
     }
     bool undecided = false;
     const QuickSolid<Prim, F> solid(ray, prim, axial, undecided);
-    if (undecided) return std::nullopt;
+    if (undecided) return false;
     if constexpr (!axial) {
         // A sphere's side has a > 0: no crossing, or the one span between the roots. Written out,
         // this common case takes 11% fewer instructions per float sphere ray (callgrind) than
         // solid_crossings' general span logic.
         const auto& side = solid.side();
         const int a = side.sign_a();
-        if (undecided) return std::nullopt;
+        if (undecided) return false;
         if (a > 0) {
             const int disc = side.sign_disc();
-            if (undecided) return std::nullopt;
-            if (disc < 0) return Crossings<T>{};
-            const auto out = two_root_crossings(ray, limit, [&](int which) -> std::optional<T> {
+            if (undecided) return false;
+            if (disc < 0) {
+                out.count = 0;
+                return true;
+            }
+            const bool settled = two_root_crossings(ray, limit, [&](int which) -> std::optional<T> {
                 const T t = side.rounded_alone(which);
                 if (undecided) return std::nullopt;
                 return t;
-            });
-            if (undecided) return std::nullopt;
-            return out;
+            }, out);
+            return settled && !undecided;
         }
         // a = |d|² is 0 only for a zero direction, or a non-sphere: the exact path decides (and
         // the general span logic below is not compiled into a sphere's lane).
-        return std::nullopt;
+        return false;
     } else {
         // Only the crossings asked for: a closest hit rounds no exit (a double's costs a Newton
         // step). The lane may then answer a closest hit whose exit it could not have decided;
@@ -1101,9 +1103,8 @@ RAYQ_FLATTEN inline std::optional<Crossings<T>> quick_solid_crossings(const Ray<
         // correctly rounded, its t_error one ulp), so the closest hit and all crossings still
         // agree (MagnitudeFilter.ClosestHitAndAllCrossingsAgreeInEveryField, IntersectAllTest). Until the exact path
         // was exact at every magnitude they did not: the lane decided both ends whatever the limit.
-        Crossings<T> out = solid_crossings<T>(solid, axial, capped, ends, limit);
-        if (undecided) return std::nullopt;
-        return out;
+        solid_crossings(solid, axial, capped, ends, limit, out);
+        return !undecided;
     }
 }
 
@@ -1131,16 +1132,16 @@ RAYQ_INLINE PlainQuadratic plain_quadratic(const Ray<double>& ray, const Prim& p
     return {r, r.df * r.df - 4.0 * r.a * r.f};
 }
 template <class Prim>
-RAYQ_FLATTEN inline std::optional<Crossings<double>> quick_sphere_crossings(const Ray<double>& ray, const Prim& prim, const PlainQuadratic& q,
-                                                                            int limit)
+RAYQ_FLATTEN inline bool quick_sphere_crossings(const Ray<double>& ray, const Prim& prim, const PlainQuadratic& q, int limit,
+                                                Crossings<double>& out)
 {
     const Residual<double>& r = q.r;
     const double d = q.d;
-    if (!inputs_within_static_range(ray, prim) || !(r.a > 0.0 && d > 0.0)) return std::nullopt;
+    if (!inputs_within_static_range(ray, prim) || !(r.a > 0.0 && d > 0.0)) return false;
     const PartCoefficients<Prim> coef{&prim, &ray, Part::surface};
     return two_root_crossings(ray, limit, [&](int which) {
         return quick_newton_rounded<double>(coef, 1, which, root_estimate(r.a, r.df, r.f, d, 1, which));
-    });
+    }, out);
 }
 
 // A double axial primitive's closest crossing by axial_first_crossing, flattened on its own before
@@ -1149,23 +1150,22 @@ RAYQ_FLATTEN inline std::optional<Crossings<double>> quick_sphere_crossings(cons
 // 31 runs, accurate double, ns per ray over hits and misses: capped cylinder 117.3 -> 108.1, open
 // 129.0 -> 118.8, frustum 150.9 -> 139.0; fast's 90.6, 102.3, 117.3).
 template <class Prim>
-RAYQ_FLATTEN inline std::optional<Crossings<double>> quick_axial_crossing(const Ray<double>& ray, const Prim& prim, bool capped, CapEnds ends,
-                                                                          int limit)
+RAYQ_FLATTEN inline bool quick_axial_crossing(const Ray<double>& ray, const Prim& prim, bool capped, CapEnds ends, int limit,
+                                              Crossings<double>& out)
 {
-    if (!inputs_within_static_range(ray, prim)) return std::nullopt;
-    return axial_first_crossing(ray, prim, capped, ends, limit);
+    return inputs_within_static_range(ray, prim) && axial_first_crossing(ray, prim, capped, ends, limit, out);
 }
 
 // (Axial as a constant, so that a sphere's lane carries no cap logic.)
 template <class Prim>
-inline std::optional<Crossings<scalar_t<Prim>>> quick_curved_crossings(const Ray<scalar_t<Prim>>& ray, const Prim& prim, bool axial, bool capped,
-                                                                       CapEnds ends, int limit)
+inline bool quick_curved_crossings(const Ray<scalar_t<Prim>>& ray, const Prim& prim, bool axial, bool capped, CapEnds ends, int limit,
+                                   Crossings<scalar_t<Prim>>& out)
 {
     if constexpr (has_axis_ends<Prim>::value && std::is_same_v<scalar_t<Prim>, double>) {
-        if (axial)
-            if (const auto out = quick_axial_crossing(ray, prim, capped, ends, limit)) return out;
+        if (axial && quick_axial_crossing(ray, prim, capped, ends, limit, out)) return true;
     }
-    return axial ? quick_solid_crossings<true>(ray, prim, capped, ends, limit) : quick_solid_crossings<false>(ray, prim, capped, ends, limit);
+    return axial ? quick_solid_crossings<true>(ray, prim, capped, ends, limit, out)
+                 : quick_solid_crossings<false>(ray, prim, capped, ends, limit, out);
 }
 
 // The quick lane again on coefficients in running error bounds (pbrt-v4 "Managing Rounding
@@ -1176,33 +1176,44 @@ inline std::optional<Crossings<scalar_t<Prim>>> quick_curved_crossings(const Ray
 // surface; 0.002% after this try). Double inputs go straight to the exact path (their lane rounds
 // by a Newton step, which interval widths do not stop). None when this lane declines too.
 template <class Prim>
-inline std::optional<Crossings<scalar_t<Prim>>> running_bound_crossings(const Ray<scalar_t<Prim>>& ray, const Prim& prim, bool axial,
-                                                                        bool capped, CapEnds ends, int limit)
+inline bool running_bound_crossings(const Ray<scalar_t<Prim>>& ray, const Prim& prim, bool axial, bool capped, CapEnds ends, int limit,
+                                    Crossings<scalar_t<Prim>>& out)
 {
     if constexpr (std::is_same_v<scalar_t<Prim>, float>) {
         using BD = Bounded<double>;
-        return axial ? quick_solid_crossings<true, Prim, BD>(ray, prim, capped, ends, limit)
-                     : quick_solid_crossings<false, Prim, BD>(ray, prim, capped, ends, limit);
+        return axial ? quick_solid_crossings<true, Prim, BD>(ray, prim, capped, ends, limit, out)
+                     : quick_solid_crossings<false, Prim, BD>(ray, prim, capped, ends, limit, out);
     }
-    return std::nullopt;
+    return false;
 }
 
 // What the static filter's lane declined: the running bounds' lane, then the exact path. Out of
 // line, so the common case's code is as it was without the second lane.
 template <class Prim>
-RAYQ_NOINLINE Crossings<scalar_t<Prim>> declined_curved_crossings(const Ray<scalar_t<Prim>>& ray, const Prim& prim, bool axial, bool capped,
-                                                                  CapEnds ends, int limit)
+RAYQ_NOINLINE void declined_curved_crossings(const Ray<scalar_t<Prim>>& ray, const Prim& prim, bool axial, bool capped, CapEnds ends,
+                                             int limit, Crossings<scalar_t<Prim>>& out)
 {
-    if (const auto second = running_bound_crossings(ray, prim, axial, capped, ends, limit)) return *second;
-    return exact_curved_crossings_in_unit(ray, prim, axial, capped, ends, limit, reach_of(ray, prim));
+    if (running_bound_crossings(ray, prim, axial, capped, ends, limit, out)) return;
+    out = exact_curved_crossings_in_unit(ray, prim, axial, capped, ends, limit, reach_of(ray, prim));
 }
 
+// Written into `out`, the object the query reads (a primitive's crossings() returns it by NRVO),
+// so that no Crossings is built elsewhere and copied: GCC copied the quick lane's returned
+// optional in 16-byte loads of fields just stored as 4- and 1-byte pieces, a store-forwarding
+// stall on every query (as intersect()'s record, query.hpp).
+template <class Prim>
+inline void exact_curved_crossings(const Ray<scalar_t<Prim>>& ray, const Prim& prim, bool axial, bool capped, CapEnds ends, int limit,
+                                   Crossings<scalar_t<Prim>>& out)
+{
+    if (!quick_curved_crossings(ray, prim, axial, capped, ends, limit, out)) declined_curved_crossings(ray, prim, axial, capped, ends, limit, out);
+}
 template <class Prim>
 inline Crossings<scalar_t<Prim>> exact_curved_crossings(const Ray<scalar_t<Prim>>& ray, const Prim& prim, bool axial, bool capped,
                                                          CapEnds ends, int limit)
 {
-    if (const auto quick = quick_curved_crossings(ray, prim, axial, capped, ends, limit)) return *quick;
-    return declined_curved_crossings(ray, prim, axial, capped, ends, limit);
+    Crossings<scalar_t<Prim>> out;
+    exact_curved_crossings(ray, prim, axial, capped, ends, limit, out);
+    return out;
 }
 
 }  // namespace rayq::detail
@@ -1212,10 +1223,21 @@ namespace rayq::detail {
 // What the quick lane below needs of a flat primitive, from the static filter (magnitude.hpp):
 // its plane along the ray, F(t) = f + df·t, and its trim at F's root: +1 inside, −1 outside,
 // 0 undecided.
+// f and df are kept as values with their bounds, made where the filter's counts are constants.
+// Kept as Magnitudes, the counts travelled with the copy of this struct: GCC 12 (-O3, SSE2) moved
+// them through the stack in 16-byte pieces that missed store forwarding, two stalls on every
+// accurate query of a plane before its first branch (same-binary medians, accurate ÷ fast:
+// float plane 1.42 -> 1.05, double plane 1.84 -> 1.47).
 struct QuickFlat {
-    Magnitude<double> f, df;
+    Bounded<double> f, df;
     int inside;
-    bool in_range = true;  // the primitive's inputs are within the filter's range (within_static_range)
+    bool in_range;  // the primitive's inputs are within the filter's range (within_static_range)
+
+    // Degrees beyond six leave the filter's guarantee (magnitude.hpp): out of range too.
+    RAYQ_INLINE QuickFlat(const Magnitude<double>& f_, const Magnitude<double>& df_, int inside_, bool in_range_)
+        : f(bounded(f_)), df(bounded(df_)), inside(inside_), in_range(in_range_ && f_.d <= 6 && df_.d <= 6)
+    {
+    }
 };
 
 // A flat primitive's plane coefficients for QuickFlat. t = 0 enters as a constant, not as a float
@@ -1229,8 +1251,9 @@ inline Residual<Magnitude<double>> quick_plane(const Ray<scalar_t<Prim>>& ray, c
 
 // The common case of a flat primitive, settled by the static filter alone, as
 // quick_curved_crossings settles a curved one: the plane's slope certainly nonzero, its root −f/df
-// correctly rounded on a definite side of both window ends, and the trim certain. None when
-// anything is uncertain: exact_flat_crossing then decides, and since the correctly rounded root
+// correctly rounded on a definite side of both window ends, and the trim certain: true, with the
+// crossing (if any) added to `out`. False, `out` untouched, when anything is uncertain:
+// exact_flat_crossing then decides, and since the correctly rounded root
 // and the exact trim are unique, both give the same answer. `quick()` computes the QuickFlat;
 // everything here is inlined (flatten), so the filter's counts fold to constants.
 // The root: for float, from the filter's certified interval in double (quotient,
@@ -1238,31 +1261,30 @@ inline Residual<Magnitude<double>> quick_plane(const Ray<scalar_t<Prim>>& ray, c
 // interval spans ulps, by one certified double-word Newton step from −f/df on the plane's residual
 // `coef` (newton_rounded), exact for a linear F up to the double-word bounds.
 template <class T, class Quick, class Coef>
-RAYQ_FLATTEN inline std::optional<Crossings<T>> quick_flat_crossing(const Ray<T>& ray, const Quick& quick, const Coef& coef)
+RAYQ_FLATTEN inline bool quick_flat_crossing(const Ray<T>& ray, const Quick& quick, const Coef& coef, Crossings<T>& out)
 {
-    if (!all_within_static_range(ray.origin, ray.direction)) return std::nullopt;
+    if (!all_within_static_range(ray.origin, ray.direction)) return false;
     const QuickFlat plane = quick();
-    if (!plane.in_range || plane.f.d > 6 || plane.df.d > 6) return std::nullopt;
+    if (!plane.in_range) return false;
     const int slope = certain_sign(plane.df);
-    if (slope == 0) return std::nullopt;
+    if (slope == 0) return false;
     // A certain miss of the trim needs no t (most rays that reach a flat primitive's plane miss it;
     // a double t costs a Newton step).
-    if (plane.inside < 0) return Crossings<T>{};
+    if (plane.inside < 0) return true;
     // A root certainly behind a window that starts at or after 0 needs no t either: the root −f/df
     // is negative where f and df certainly have one sign (the misses of a plane, rays leaving it,
     // took a double's Newton step: 983 against 643 instructions per miss under `fast`, callgrind,
     // SSE2).
-    if (ray.tmin >= T(0) && certain_sign(plane.f) == slope) return Crossings<T>{};
+    if (ray.tmin >= T(0) && certain_sign(plane.f) == slope) return true;
     std::optional<T> t;
-    if constexpr (std::is_same_v<T, float>) t = rounded_between_midpoints<float>(quotient(-bounded(plane.f), bounded(plane.df)));
-    else t = quick_newton_rounded<T>(coef, 0, 0, -plane.f.v() / plane.df.v());
+    if constexpr (std::is_same_v<T, float>) t = rounded_between_midpoints<float>(quotient(-plane.f, plane.df));
+    else t = quick_newton_rounded<T>(coef, 0, 0, -plane.f.v / plane.df.v);
     // A float t ≠ x on one side of x puts the exact root on that side: it lies beyond t's midpoint.
-    if (!t || *t == ray.tmin || *t == ray.tmax) return std::nullopt;
-    Crossings<T> out;
-    if (!(ray.tmin < *t && *t < ray.tmax)) return out;
-    if (plane.inside == 0) return std::nullopt;
+    if (!t || *t == ray.tmin || *t == ray.tmax) return false;
+    if (!(ray.tmin < *t && *t < ray.tmax)) return true;
+    if (plane.inside == 0) return false;
     out.add(*t, Part::surface, slope < 0, true);  // F decreasing along the ray: entering
-    return out;
+    return true;
 }
 
 // The crossing of a flat primitive's plane, if the exact inside test `inside(plane)` accepts it
@@ -1275,9 +1297,10 @@ inline Crossings<scalar_t<Prim>> exact_flat_crossing(const Ray<scalar_t<Prim>>& 
     using T = scalar_t<Prim>;
     using Coef = PartCoefficients<Prim>;
     const Coef coef{&prim, &ray, Part::surface};
-    if (const auto settled = quick_flat_crossing(ray, quick, coef)) return *settled;
-    const ExactQuadratic<T, Coef> plane(coef);
+    // Written where it is returned (every return names `out`: NRVO), as intersect()'s record.
     Crossings<T> out;
+    if (quick_flat_crossing(ray, quick, coef, out)) return out;
+    const ExactQuadratic<T, Coef> plane(coef);
     if (plane.sign_b() == 0) return out;  // parallel to the plane, or in it
     const T t = plane.round(0);
     // The exact root lies strictly between t's neighbours: decide the window from them when they
