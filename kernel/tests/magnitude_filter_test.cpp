@@ -255,6 +255,9 @@ TEST(MagnitudeFilter, StaticDoubleWordBoundHoldsOnEveryResidual)
         const auto exact = coef.at(Expansion<double>{t}).f;
         ASSERT_TRUE(exact.exact()) << i;
         EXPECT_TRUE(bound_holds(f, exact)) << i << " part " << int(part) << " t " << t;
+        // The Newton step's estimate, as the query takes it (hardware FMA where the CPU has one).
+        const detail::Estimate<double> step_f = detail::quick_f_estimate(coef, t);
+        EXPECT_TRUE(bound_holds(Expansion<double>(step_f.v), step_f.e, exact)) << i << " part " << int(part) << " t " << t;
         EXPECT_LE(f.d, 8) << i;
         max_degree = std::max(max_degree, f.d);
         ++checked;
@@ -444,12 +447,17 @@ TEST(MagnitudeFilter, SphereResidualForNewtonStepsHoldsItsBound)
             ++near_roots;
         }
         if (!detail::all_within_static_range(r.origin, r.direction, s.center, s.radius, t)) continue;
-        const detail::Estimate<double> f = quick_residual_f(s, r, t, Part::surface);
+        const detail::Estimate<double> f = quick_residual_f(s, r, t, Part::surface, detail::AsBuiltProducts{});
         using E = Expansion<double>;
         const E exact = residual(s, detail::lift<E>(r.origin), detail::lift<E>(r.direction), E{t}, Part::surface).f;
         ASSERT_TRUE(exact.exact());
         EXPECT_GE((exact - E{f.v} + E{f.e}).sign(), 0) << i;
         EXPECT_LE((exact - E{f.v} - E{f.e}).sign(), 0) << i;
+        // As the query takes it: hardware FMA where the CPU has one (quick_f_estimate).
+        const detail::Estimate<double> g = detail::quick_f_estimate(detail::PartCoefficients<Sphere<double>>{&s, &r, Part::surface}, t);
+        EXPECT_GE((exact - E{g.v} + E{g.e}).sign(), 0) << i;
+        EXPECT_LE((exact - E{g.v} - E{g.e}).sign(), 0) << i;
+        EXPECT_LT(g.e, 1.01 * f.e) << i;  // the same bound, up to its own roundings
         double m = radius * radius;  // F's magnitude: Σ(|o − c| + |t·d|)² + r², per component
         for (int a = 0; a < 3; ++a) {
             const double size = std::abs((&r.origin.x)[a] - (&s.center.x)[a]) + std::abs(t * (&r.direction.x)[a]);
@@ -780,6 +788,56 @@ TEST(MagnitudeFilter, DoubleAxialLaneAgreesNearRimsAndTangency)
     EXPECT_GT(caps, rays / 20);
     EXPECT_GT(misses, rays / 50);
     EXPECT_GT(exits, rays / 100);
+}
+
+// The Newton steps' F(t) by hardware FMA (where the CPU has one, whatever the build targets) and
+// by the build's own products: every accurate record the same, bit for bit, on random rays at
+// every primitive with a double quick lane (the correctly rounded root is unique; a step that
+// cannot certify it leaves it to the exact path either way).
+TEST(MagnitudeFilter, FusedAndBuiltProductsGiveTheSameRecords)
+{
+#if defined(RAYQ_FMA_DISPATCH)
+    if (!detail::cpu_has_fma()) GTEST_SKIP() << "this CPU has no FMA";
+    std::mt19937_64 rng(0xF3A);
+    std::uniform_real_distribution<double> u(-1, 1);
+    const auto v = [&] { return Vec3<double>{u(rng), u(rng), u(rng)}; };
+    int hits = 0, rays = 0;
+    const auto same = [&](const auto& prim, const Ray<double>& r) {
+        detail::use_fused_products = true;
+        const auto fused = intersect(accurate, r, prim);
+        detail::use_fused_products = false;
+        const auto built = intersect(accurate, r, prim);
+        detail::use_fused_products = true;
+        ++rays;
+        ASSERT_EQ(fused.has_value(), built.has_value()) << rays;
+        if (!fused) return;
+        ++hits;
+        EXPECT_EQ(fused->t, built->t) << rays;
+        EXPECT_EQ(fused->t_error, built->t_error) << rays;
+        EXPECT_EQ(fused->part, built->part) << rays;
+        EXPECT_EQ(fused->front_face, built->front_face) << rays;
+        for (int k = 0; k < 3; ++k) {
+            EXPECT_EQ((&fused->point.x)[k], (&built->point.x)[k]) << rays;
+            EXPECT_EQ((&fused->normal.x)[k], (&built->normal.x)[k]) << rays;
+            EXPECT_EQ((&fused->point_error.x)[k], (&built->point_error.x)[k]) << rays;
+        }
+    };
+    for (int i = 0; i < 3000; ++i) {
+        const Vec3<double> c = v(), a = normalize(v()), o = c + 4.0 * normalize(v());
+        const Ray<double> r{o, normalize(c + 0.8 * v() - o)};
+        same(Plane<double>{c, a}, r);
+        same(Disk<double>{c, a, 0.7}, r);
+        same(Triangle<double>{c, c + v(), c + v()}, r);
+        same(Parallelogram<double>{c, v(), v()}, r);
+        same(Sphere<double>{c, 0.8}, r);
+        same(Cylinder<double>{c - 0.5 * a, c + 0.5 * a, 0.6, Caps::both}, r);
+        same(Cone<double>{c - 0.5 * a, 0.7, c + 0.5 * a, 0.3, Caps::both}, r);
+    }
+    detail::use_fused_products = detail::cpu_has_fma();
+    EXPECT_GT(hits, rays / 4);
+#else
+    GTEST_SKIP() << "the build targets FMA, or is not GCC or clang on x86: no run-time choice";
+#endif
 }
 
 }  // namespace

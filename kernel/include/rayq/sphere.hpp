@@ -76,10 +76,12 @@ inline detail::Residual<N> residual(const Sphere<T>& s, const Vec3<N>& o, const 
 // left out. The bound, per m = ΣM² + r²: the low parts' and 2q̃·e's sum (eight terms, their
 // magnitudes within 8.02u·m: γ7) 56.2u²·m, 2q̃·e's own rounding 12.1u²·m, e's error 8.01u²·m, E²
 // 4.01u²·m: 81u²·m, taken as 128u²·m (m's own rounding is far inside that).
-template <class T>
-RAYQ_INLINE detail::Estimate<T> quick_residual_f(const Sphere<T>& s, const Ray<T>& ray, T t, Part)
+// `Products` forms the products' error terms (detail::AsBuiltProducts or FusedProducts).
+template <class T, class Products>
+RAYQ_INLINE detail::Estimate<T> quick_residual_f(const Sphere<T>& s, const Ray<T>& ray, T t, Part, Products)
 {
-    using detail::Pair, detail::two_sum, detail::two_product;
+    using detail::Pair, detail::two_sum;
+    const auto two_product = [](T a, T b) RAYQ_INLINE_LAMBDA { return Products::two_product(a, b); };
     const T o[3] = {ray.origin.x, ray.origin.y, ray.origin.z}, c[3] = {s.center.x, s.center.y, s.center.z};
     const T d[3] = {ray.direction.x, ray.direction.y, ray.direction.z};
     Pair<T> sq[3];

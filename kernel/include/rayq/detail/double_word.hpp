@@ -96,8 +96,9 @@ template <class T> RAYQ_INLINE DoubleWord<T>& operator+=(DoubleWord<T>& a, const
 // (n <= c + 1: only the exact sums and products of inputs add none to c, and they are leaves)
 // leave c·u²·M <= (c + 1)·u²·m (2·c·n·u <= 1), and bound() rounds once more, within the last
 // unit: relative u, or where u²·m is subnormal (m >= 2^-928 or 0), absolute 2^-1075, far below
-// that unit. c, l, d and `word` are constants once inlined.
-template <class T>
+// that unit. c, l, d and `word` are constants once inlined. `Products` forms the products' error
+// terms (eft.hpp: as the build targets, or by hardware FMA).
+template <class T, class Products = AsBuiltProducts>
 struct StaticDoubleWord {
     T hi = T(0), lo = T(0), m = T(0);
     int c = 0, l = 0, d = 0;
@@ -111,7 +112,7 @@ struct StaticDoubleWord {
     RAYQ_INLINE T bound() const { return T(c + 2) * m * u2<T>(); }
 };
 
-template <class T> RAYQ_INLINE StaticDoubleWord<T> operator+(const StaticDoubleWord<T>& a, const StaticDoubleWord<T>& b)
+template <class T, class P> RAYQ_INLINE StaticDoubleWord<T, P> operator+(const StaticDoubleWord<T, P>& a, const StaticDoubleWord<T, P>& b)
 {
     const Pair<T> s = two_sum(a.hi, b.hi);
     const T m = a.m + b.m;
@@ -121,16 +122,16 @@ template <class T> RAYQ_INLINE StaticDoubleWord<T> operator+(const StaticDoubleW
     if (a.word) return {s.hi, s.lo + b.lo, m, b.c + b.l + 2, b.l + 2, d};
     return {s.hi, s.lo + (a.lo + b.lo), m, std::max(a.c, b.c) + 2 * l + 2, l + 2, d};
 }
-template <class T> RAYQ_INLINE StaticDoubleWord<T> operator-(const StaticDoubleWord<T>& a)
+template <class T, class P> RAYQ_INLINE StaticDoubleWord<T, P> operator-(const StaticDoubleWord<T, P>& a)
 {
-    StaticDoubleWord<T> negated = a;
+    StaticDoubleWord<T, P> negated = a;
     negated.hi = -a.hi, negated.lo = -a.lo;
     return negated;
 }
-template <class T> RAYQ_INLINE StaticDoubleWord<T> operator-(const StaticDoubleWord<T>& a, const StaticDoubleWord<T>& b) { return a + (-b); }
-template <class T> RAYQ_INLINE StaticDoubleWord<T> operator*(const StaticDoubleWord<T>& a, const StaticDoubleWord<T>& b)
+template <class T, class P> RAYQ_INLINE StaticDoubleWord<T, P> operator-(const StaticDoubleWord<T, P>& a, const StaticDoubleWord<T, P>& b) { return a + (-b); }
+template <class T, class P> RAYQ_INLINE StaticDoubleWord<T, P> operator*(const StaticDoubleWord<T, P>& a, const StaticDoubleWord<T, P>& b)
 {
-    const Pair<T> p = two_product(a.hi, b.hi);
+    const Pair<T> p = P::two_product(a.hi, b.hi);
     const T m = a.m * b.m;
     const int d = a.d + b.d;
     if (a.word && b.word) return {p.hi, p.lo, m, 0, 1, d};
@@ -138,7 +139,7 @@ template <class T> RAYQ_INLINE StaticDoubleWord<T> operator*(const StaticDoubleW
     if (a.word) return {p.hi, p.lo + b.lo * a.hi, m, b.c + 2 * b.l + 2, b.l + 2, d};
     return {p.hi, p.lo + (a.hi * b.lo + a.lo * b.hi), m, a.c + b.c + a.l * b.l + 3 * (a.l + b.l) + 2, a.l + b.l + 2, d};
 }
-template <class T> RAYQ_INLINE StaticDoubleWord<T>& operator+=(StaticDoubleWord<T>& a, const StaticDoubleWord<T>& b) { return a = a + b; }
+template <class T, class P> RAYQ_INLINE StaticDoubleWord<T, P>& operator+=(StaticDoubleWord<T, P>& a, const StaticDoubleWord<T, P>& b) { return a = a + b; }
 
 // Certain sign of the exact value, or 0 when the bound straddles zero.
 template <class T>
@@ -180,8 +181,8 @@ RAYQ_INLINE Estimate<T> estimate(const DoubleWord<T>& x)
 {
     return estimate_of(x.hi, x.lo, x.e);
 }
-template <class T>
-RAYQ_INLINE Estimate<T> estimate(const StaticDoubleWord<T>& x)
+template <class T, class P>
+RAYQ_INLINE Estimate<T> estimate(const StaticDoubleWord<T, P>& x)
 {
     return estimate_of(x.hi, x.lo, x.bound());
 }

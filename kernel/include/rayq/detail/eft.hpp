@@ -52,6 +52,23 @@ RAYQ_INLINE Pair<T> two_product(T a, T b)
 #endif
 }
 
+// How a double-word evaluation forms its products' error terms: two_product as the build targets
+// it (AsBuilt), or the hardware FMA (Fused), for code compiled for FMA inside a function that
+// only runs where the CPU has one (with_fused_products, exact_crossings.hpp). Both give the exact
+// error term, so every value is the same either way.
+struct AsBuiltProducts {
+    template <class T>
+    static RAYQ_INLINE Pair<T> two_product(T a, T b) { return detail::two_product(a, b); }
+};
+struct FusedProducts {
+    template <class T>
+    static RAYQ_INLINE Pair<T> two_product(T a, T b)
+    {
+        const T p = a * b;
+        return {p, std::fma(a, b, -p)};
+    }
+};
+
 // a·b − c·d with both products error-free, so the subtraction — where cancellation lives —
 // sees exact operands (pbrt-v4 DifferenceOfProducts; this form is exactly antisymmetric:
 // dop(a,b,c,d) == −dop(c,d,a,b), which keeps shared triangle edges watertight).
