@@ -325,9 +325,11 @@ inline bool may_enter_window(Policy, const Ray<scalar_t<Prim>>& ray, const Prim&
 
 // The first crossing in the window as a hit, written into a fresh record h (write_hit); its bound
 // covers every earlier crossing that may exactly lie in the window.
+// Forced inline, as first_hit's record was where GCC inlined it (rayq-bench: the accurate double
+// plane's intersect() called it out of line once it wrote in place).
 template <class Policy, class Prim>
-inline void write_first_hit(Policy policy, const Ray<scalar_t<Prim>>& ray, const Prim& prim, const Crossing<scalar_t<Prim>>& c,
-                            bool earlier_may_count, HitFields fields, Hit<scalar_t<Prim>>& h)
+RAYQ_INLINE void write_first_hit(Policy policy, const Ray<scalar_t<Prim>>& ray, const Prim& prim, const Crossing<scalar_t<Prim>>& c,
+                                 bool earlier_may_count, HitFields fields, Hit<scalar_t<Prim>>& h)
 {
     write_hit(policy, ray, prim, c, fields, h);
     if (!wants(fields, HitFields::bounds)) return;

@@ -383,18 +383,12 @@ struct has_quick_residual_f<Coef, std::void_t<decltype(quick_residual_f(*std::de
     : std::true_type {};
 
 // F(t) in a double word for the Newton step, its products' error terms formed by `Products`.
-// Degrees: StaticDoubleWord's grid argument (at most 8; checked by the caller, quick_f_degree).
+// Degrees: StaticDoubleWord's grid argument (at most 8; checked by the caller).
 template <class T, class Coef, class Products>
 RAYQ_INLINE Estimate<T> quick_residual_estimate(const Coef& coef, T t, Products)
 {
     if constexpr (has_quick_residual_f<Coef>::value) return quick_residual_f(*coef.prim, *coef.ray, t, coef.part, Products{});
     else return estimate(coef.at(StaticDoubleWord<T, Products>{t}).f);
-}
-template <class T, class Coef>
-RAYQ_INLINE int quick_f_degree(const Coef& coef, T t)
-{
-    if constexpr (has_quick_residual_f<Coef>::value) return 2;  // the sphere's (sphere.hpp)
-    else return coef.at(StaticDoubleWord<T>{t}).f.d;  // a constant once inlined: the arithmetic is dead
 }
 
 // Hardware FMA where the CPU has one, whatever the build targets: without it (the x86-64
@@ -441,9 +435,10 @@ RAYQ_FLATTEN inline std::optional<T> quick_newton_rounded(const Coef& coef, int 
     static_assert(std::is_same_v<T, double>, "the quick lanes round float roots from their intervals");
     if (within_static_range(t)) {
         const Residual<Magnitude<T>> slopes = coef.at(Magnitude<T>{t});
-        // Degrees: StaticDoubleWord's grid argument; products of at most 15 magnitudes in 2^±64
-        // stay normal (magnitude.hpp).
-        if (quick_f_degree(coef, t) <= 8 && slopes.df.d <= 15 && slopes.a.d <= 15)
+        // Degrees: StaticDoubleWord's grid argument (F's degree, counted as the filter counts it:
+        // the sphere's own evaluation needs no check, sphere.hpp); products of at most 15
+        // magnitudes in 2^±64 stay normal (magnitude.hpp).
+        if ((has_quick_residual_f<Coef>::value || slopes.f.d <= 8) && slopes.df.d <= 15 && slopes.a.d <= 15)
             return newton_step(quick_f_estimate(coef, t), Estimate<T>{slopes.df.v(), slopes.df.bound()},
                                Estimate<T>{slopes.a.v(), slopes.a.bound()}, sign_a, which, t);
     }
