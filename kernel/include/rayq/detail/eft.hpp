@@ -34,16 +34,25 @@ RAYQ_INLINE Pair<T> fast_two_sum(T a, T b)
     return {s, b - (s - a)};
 }
 
+// a·b = p + e exactly by the hardware FMA: one fused operation for the error term. Where the
+// build does not target FMA, only inside code compiled for it (FusedProducts below).
+template <class T>
+RAYQ_INLINE Pair<T> fused_two_product(T a, T b)
+{
+    const T p = a * b;
+    return {p, std::fma(a, b, -p)};
+}
+
 // a·b = p + e exactly (barring overflow/underflow). With a hardware FMA the error term is one
 // fused operation; without one (the x86-64 baseline), std::fma is a slow library call, so we use
 // Dekker's product with Veltkamp splitting instead.
 template <class T>
 RAYQ_INLINE Pair<T> two_product(T a, T b)
 {
-    const T p = a * b;
 #if defined(__FMA__) || defined(__FMA4__) || defined(__aarch64__) || defined(__ARM_FEATURE_FMA)
-    return {p, std::fma(a, b, -p)};
+    return fused_two_product(a, b);
 #else
+    const T p = a * b;
     constexpr T splitter = sizeof(T) == 4 ? T(4097) : T(134217729);  // 2^ceil(digits/2) + 1
     const T ca = splitter * a, cb = splitter * b;
     const T ah = ca - (ca - a), al = a - ah;
@@ -54,19 +63,15 @@ RAYQ_INLINE Pair<T> two_product(T a, T b)
 
 // How a double-word evaluation forms its products' error terms: two_product as the build targets
 // it (AsBuilt), or the hardware FMA (Fused), for code compiled for FMA inside a function that
-// only runs where the CPU has one (with_fused_products, exact_crossings.hpp). Both give the exact
-// error term, so every value is the same either way.
+// only runs where the CPU has one (quick_f_estimate, exact_crossings.hpp). Both error terms are
+// exact.
 struct AsBuiltProducts {
     template <class T>
     static RAYQ_INLINE Pair<T> two_product(T a, T b) { return detail::two_product(a, b); }
 };
 struct FusedProducts {
     template <class T>
-    static RAYQ_INLINE Pair<T> two_product(T a, T b)
-    {
-        const T p = a * b;
-        return {p, std::fma(a, b, -p)};
-    }
+    static RAYQ_INLINE Pair<T> two_product(T a, T b) { return fused_two_product(a, b); }
 };
 
 // a·b − c·d with both products error-free, so the subtraction — where cancellation lives —

@@ -398,9 +398,10 @@ RAYQ_INLINE Estimate<T> quick_residual_estimate(const Coef& coef, T t, Products)
 // compiled for FMA (GCC and clang's target attribute), called only where the CPU reports FMA and
 // the OS its AVX state (__builtin_cpu_supports checks both); elsewhere, and before static
 // initialization has probed the CPU, the build's own products. Both are within the same bound,
-// and a step that certifies its root gives the correctly rounded one either way. Within that function GCC (GNU mode) may contract a·b + c into FMA: one rounding instead of two,
-// which StaticDoubleWord's and the sphere's bounds cover (they count roundings as upper bounds;
-// Dekker's split, which contraction would break, is not used there).
+// and a step that certifies its root gives the correctly rounded one either way. Within that
+// function GCC (GNU mode) may contract a·b + c into FMA: one rounding instead of two, which
+// StaticDoubleWord's and the sphere's bounds cover (they count roundings as upper bounds; Dekker's
+// split, which contraction would break, is not used there).
 #if (defined(__x86_64__) || defined(__i386__)) && (defined(__GNUC__) || defined(__clang__)) && !defined(__FMA__)
 #define RAYQ_FMA_DISPATCH 1
 inline bool cpu_has_fma()
@@ -415,19 +416,15 @@ __attribute__((target("fma"), noinline)) RAYQ_FLATTEN Estimate<T> fused_residual
 {
     return quick_residual_estimate(coef, t, FusedProducts{});
 }
-template <class T, class Coef>
-RAYQ_INLINE Estimate<T> quick_f_estimate(const Coef& coef, T t)
-{
-    if (use_fused_products) return fused_residual_estimate(coef, t);
-    return quick_residual_estimate(coef, t, AsBuiltProducts{});
-}
-#else
-template <class T, class Coef>
-RAYQ_INLINE Estimate<T> quick_f_estimate(const Coef& coef, T t)
-{
-    return quick_residual_estimate(coef, t, AsBuiltProducts{});
-}
 #endif
+template <class T, class Coef>
+RAYQ_INLINE Estimate<T> quick_f_estimate(const Coef& coef, T t)
+{
+#if defined(RAYQ_FMA_DISPATCH)
+    if (use_fused_products) return fused_residual_estimate(coef, t);
+#endif
+    return quick_residual_estimate(coef, t, AsBuiltProducts{});
+}
 
 template <class T, class Coef>
 RAYQ_FLATTEN inline std::optional<T> quick_newton_rounded(const Coef& coef, int sign_a, int which, T t)
