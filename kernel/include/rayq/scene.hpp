@@ -123,14 +123,20 @@ struct SceneStore {
     // -march=native, M rays/s, medians of 5, two runs each: `fast` with point and normal 58.7, 60.1
     // -> 71.1, 63.5 (Embree's cone curve 12.2–12.8 in the same runs); `stable` 33.6, 34.2 -> 44.4,
     // 44.5. The line test compares ℓ²·|d|², so it waits for no square root (BoundFilterRay).
+    // `line`: the query's ray as the caller holds it, whose origin and direction the filter reads;
+    // `window`: the same line with the window narrowed so far (nearest()'s copy). Not the copy's
+    // origin and direction: GCC copies a Ray in one 32-byte store and the filter then reads
+    // direction x and y (bytes 12-19, across its 16-byte halves) back in one 8-byte load, which
+    // store forwarding cannot serve (perf, 16 capped cylinders under `fast`, Xeon with AVX-512:
+    // 11% of the samples on that load).
     template <class Policy, class Visit>
-    RAYQ_INLINE bool scan(const Ray<T>& ray, Visit visit) const
+    RAYQ_INLINE bool scan(const Ray<T>& line, const Ray<T>& window, Visit visit) const
     {
         constexpr std::size_t direct_up_to = 2;
         if constexpr (filtered<Policy>)
-            if (items.size() > direct_up_to) return scan_filtered<Policy>(ray, visit);
+            if (items.size() > direct_up_to) return scan_filtered<Policy>(line, window, visit);
         if constexpr (bounded && filtered<Policy> && batch::bound_test_v<Policy, Prim> != batch::BoundTest::line) {
-            const auto f = filter_ray<Policy>(ray);
+            const auto f = filter_ray<Policy>(line);
             for (std::size_t i = 0, n = items.size(); i < n; ++i)
                 if (valid[i] && !batch::line_passes_bound<batch::bound_test_v<Policy, Prim>>(f, soa, i) && visit(i)) return true;
             return false;
@@ -152,12 +158,12 @@ struct SceneStore {
     }
 
     template <class Policy, class Visit>
-    RAYQ_INLINE bool scan_filtered(const Ray<T>& ray, Visit& visit) const
+    RAYQ_INLINE bool scan_filtered(const Ray<T>& line, const Ray<T>& window, Visit& visit) const
     {
-        const auto f = filter_ray<Policy>(ray);
+        const auto f = filter_ray<Policy>(line);
         const auto candidates = [&](std::size_t g) RAYQ_INLINE_LAMBDA {
-            if constexpr (sphere) return batch::sphere_candidates(f, ray.tmin, ray.tmax, soa, g);
-            else return batch::bound_candidates<Policy, batch::bound_test_v<Policy, Prim>>(f, ray.tmin, ray.tmax, soa, g);
+            if constexpr (sphere) return batch::sphere_candidates(f, window.tmin, window.tmax, soa, g);
+            else return batch::bound_candidates<Policy, batch::bound_test_v<Policy, Prim>>(f, window.tmin, window.tmax, soa, g);
         };
         // Most groups have no candidate: the ray's line passes every bound in them. They are
         // skipped by that test alone (line_passes_group) in a loop of its own, which calls no
@@ -208,7 +214,7 @@ struct SceneStore {
         };
         if constexpr (sphere) {
             if (groups > few_groups) {
-                const batch::UnitLineRay<T> unit(ray.direction, f.dd);
+                const batch::UnitLineRay<T> unit(line.direction, f.dd);
                 return skip_and_visit([&](std::size_t g) RAYQ_INLINE_LAMBDA { return batch::line_passes_group(f, unit, soa, g); }, true);
             }
         }
@@ -216,14 +222,14 @@ struct SceneStore {
     }
 
     // Finds a hit nearer than `best` (the nearest so far, over every store), updating `best`
-    // and narrowing the window to it. The window stays one ulp past `best`: the accurate policy
+    // and narrowing `ray`, the window, to it (`line`: the query's ray, see scan). The window stays one ulp past `best`: the accurate policy
     // decides the window exactly and may report a root just inside an end as the float next to
     // it, so ties are settled by comparing t, never by the window's exclusive end.
     template <class Policy>
-    RAYQ_INLINE bool closest(Policy policy, Ray<T>& ray, NearestSoFar<T>& best, std::size_t& index) const
+    RAYQ_INLINE bool closest(Policy policy, const Ray<T>& line, Ray<T>& ray, NearestSoFar<T>& best, std::size_t& index) const
     {
         bool found = false;
-        scan<Policy>(ray, [&](std::size_t i) RAYQ_INLINE_LAMBDA {
+        scan<Policy>(line, ray, [&](std::size_t i) RAYQ_INLINE_LAMBDA {
             const auto crossings = leading_crossings(policy, ray, items[i]);
             const Crossing<T>* c = first_in_window(ray, crossings);
             if (c && c->t < best.t) {
@@ -240,7 +246,7 @@ struct SceneStore {
     template <class Policy>
     RAYQ_INLINE bool any(Policy policy, const Ray<T>& ray) const
     {
-        return scan<Policy>(ray, [&](std::size_t i) RAYQ_INLINE_LAMBDA {
+        return scan<Policy>(ray, ray, [&](std::size_t i) RAYQ_INLINE_LAMBDA {
             return first_in_window(ray, leading_crossings(policy, ray, items[i])) != nullptr;
         });
     }
@@ -341,7 +347,7 @@ RAYQ_INLINE std::optional<SceneRef<typename Scene<Prims...>::scalar_type>> neare
     int best_type = 0;
     std::size_t best_index = 0;
     detail::visit_stores(scene.stores(), [&](const auto& store, int type) RAYQ_INLINE_LAMBDA {
-        if (store.closest(policy, window, best, best_index)) best_type = type;
+        if (store.closest(policy, ray, window, best, best_index)) best_type = type;
         return false;
     });
     // Built once, here: assembled field by field in the loop, GCC copied the optional with
