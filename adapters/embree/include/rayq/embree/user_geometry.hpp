@@ -256,10 +256,26 @@ public:
     // from that crossing too: first_hit with no earlier crossing to cover); otherwise as above.
     std::optional<Hit<T>> hit_record(const QueryContext<T>& found, HitFields fields = HitFields::all) const
     {
-        if (!found.found() || found.geomID != geomID_) return std::nullopt;
-        if (!found.crossing_is_first) return hit_record(found.ray, found.primID, fields);
+        std::optional<Hit<T>> out;
+        if (!write_hit_record(found, fields, out.emplace())) out.reset();
+        return out;
+    }
+
+    // The same record written into `out` (a fresh Hit, where the caller keeps it); false, `out`
+    // unspecified, where hit_record gives nullopt. Not built in a Hit and copied: GCC copies a
+    // record in 16-byte loads of fields just stored as 8-, 4- and 2-byte pieces (failed store
+    // forwarding, as in rayq::intersect), and Scene::intersect copied it twice more.
+    bool write_hit_record(const QueryContext<T>& found, HitFields fields, Hit<T>& out) const
+    {
+        if (!found.found() || found.geomID != geomID_) return false;
+        if (!found.crossing_is_first) {
+            const std::optional<Hit<T>> h = hit_record(found.ray, found.primID, fields);
+            if (h) out = *h;
+            return h.has_value();
+        }
         [[maybe_unused]] detail::IeeeArithmetic ieee;  // (off already while `found` lives on this thread)
-        return ::rayq::detail::first_hit(policy_, found.ray, primitives_.at(found.primID), found.crossing, false, fields);
+        ::rayq::detail::write_first_hit(policy_, found.ray, primitives_.at(found.primID), found.crossing, false, fields, out);
+        return true;
     }
 
 private:
@@ -438,15 +454,19 @@ public:
     // by that loop itself: correct, without culling.
     std::optional<EmbreeHit<T>> intersect(const Ray<T>& ray, HitFields fields = HitFields::all) const
     {
-        if (!usable(ray)) return std::nullopt;
+        std::optional<EmbreeHit<T>> out;  // every return names it (NRVO): the record is written in place
+        if (!usable(ray)) return out;
         QueryContext<T> ctx(ray);
         const std::optional<float> tfar = trace(ctx);
-        if (!tfar) return brute_force(ray, fields);
-        if (!ctx.found()) return std::nullopt;
+        if (!tfar) {
+            out = brute_force(ray, fields);
+            return out;
+        }
+        if (!ctx.found()) return out;
         // From the crossing the callback kept (the record is built once, for the winner).
-        const std::optional<Hit<T>> hit = geometry_->hit_record(ctx, fields);
-        if (!hit) return std::nullopt;  // unreachable: the winner's first crossing is in the window
-        return EmbreeHit<T>{*hit, ctx.geomID, ctx.primID, *tfar};
+        out.emplace(EmbreeHit<T>{Hit<T>{}, ctx.geomID, ctx.primID, *tfar});
+        if (!geometry_->write_hit_record(ctx, fields, out->hit)) out.reset();  // unreachable: the winner's first crossing is in the window
+        return out;
     }
 
     // The closest hit without rayq's hit record (no normal, no certified bound): t and which
