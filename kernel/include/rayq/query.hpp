@@ -85,7 +85,7 @@ namespace detail {
 template <class T>
 constexpr bool in_window(const Ray<T>& ray, T t) { return ray.tmin < t && t < ray.tmax; }
 
-// make_hit's normal n where dot(n, d) > 0 as computed (see there): reflected across the plane
+// write_hit's normal n where dot(n, d) > 0 as computed (see there): reflected across the plane
 // perpendicular to d, nudged by an ulp while rounding keeps the sign; flipped at last. Rare, so
 // out of line.
 template <class T>
@@ -98,7 +98,7 @@ inline Vec3<T> facing_ray(Vec3<T> n, const Vec3<T>& direction)
     return n;
 }
 
-// The record's certified bounds (t_error, point_error) for make_hit, given its point before
+// The record's certified bounds (t_error, point_error) for write_hit, given its point before
 // saturation (passed, not computed again: under FP contraction a second o + t·d may round
 // differently). Not inlined with it, so that the shading record every renderer asks for stays
 // small where it is inlined.
@@ -262,7 +262,7 @@ RAYQ_INLINE Vec3<T> outward_normal_on_ray(const Prim& prim, const Ray<T>&, T, co
 // 16 spheres 69.2, 73.6 -> 63.4, 69.8, 16 capped cylinders 116.8, 125.5 -> 115.8, 121.4).
 // Written into h, whose fields not asked for keep what they hold (a fresh Hit's defaults), so that a
 // caller keeping the record in memory gets it stored there field by field (scene.hpp's
-// fill_scene_hit); make_hit returns it. The bounds come back by value, so h never escapes into a call.
+// fill_scene_hit, intersect(), intersect_all()). The bounds come back by value, so h never escapes into a call.
 template <class Policy, class Prim>
 RAYQ_INLINE void write_hit(Policy policy, const Ray<scalar_t<Prim>>& ray, const Prim& prim, const Crossing<scalar_t<Prim>>& c,
                            HitFields fields, Hit<scalar_t<Prim>>& h)
@@ -302,15 +302,6 @@ RAYQ_INLINE void write_hit(Policy policy, const Ray<scalar_t<Prim>>& ray, const 
     }
 }
 
-template <class Policy, class Prim>
-RAYQ_INLINE Hit<scalar_t<Prim>> make_hit(Policy policy, const Ray<scalar_t<Prim>>& ray, const Prim& prim,
-                                          const Crossing<scalar_t<Prim>>& c, HitFields fields = HitFields::all)
-{
-    Hit<scalar_t<Prim>> h{c.t};
-    write_hit(policy, ray, prim, c, fields, h);
-    return h;
-}
-
 // A crossing the window excluded (t <= tmin) whose exact root may nevertheless lie inside it:
 // then the exact first hit may be that root, anywhere in (tmin, t of the reported hit), and the
 // reported hit's bound must reach back to tmin. Policies with exact decisions have excluded it
@@ -325,7 +316,7 @@ inline bool may_enter_window(Policy, const Ray<scalar_t<Prim>>& ray, const Prim&
 
 // The first crossing in the window as a hit, written into a fresh record h (write_hit); its bound
 // covers every earlier crossing that may exactly lie in the window.
-// Forced inline, as first_hit's record was where GCC inlined it (rayq-bench: the accurate double
+// Forced inline, as the record was where GCC inlined it (rayq-bench: the accurate double
 // plane's intersect() called it out of line once it wrote in place).
 template <class Policy, class Prim>
 RAYQ_INLINE void write_first_hit(Policy policy, const Ray<scalar_t<Prim>>& ray, const Prim& prim, const Crossing<scalar_t<Prim>>& c,
@@ -341,15 +332,6 @@ RAYQ_INLINE void write_first_hit(Policy policy, const Ray<scalar_t<Prim>>& ray, 
         earlier_may_count = earlier_may_count || !certainly_inside(ray, prim, ray.tmin);
     }
     if (earlier_may_count) h.t_error = std::max(h.t_error, grow(c.t - ray.tmin));
-}
-
-template <class Policy, class Prim>
-inline Hit<scalar_t<Prim>> first_hit(Policy policy, const Ray<scalar_t<Prim>>& ray, const Prim& prim,
-                                     const Crossing<scalar_t<Prim>>& c, bool earlier_may_count, HitFields fields)
-{
-    Hit<scalar_t<Prim>> h{c.t};
-    write_first_hit(policy, ray, prim, c, earlier_may_count, fields, h);
-    return h;
 }
 
 // The crossings a closest- or any-hit query needs: the first one in the window. A primitive whose
@@ -452,10 +434,12 @@ inline Passages<scalar_t<Prim>> intersect_all(Policy policy, const Ray<scalar_t<
     bool earlier_may_count = false;
     for (const auto& c : crossings(policy, ray, prim)) {
         if (detail::in_window(ray, c.t)) {
-            out.item[out.count] = {out.count == 0 ? detail::first_hit(policy, ray, prim, c, earlier_may_count, fields)
-                                                  : detail::make_hit(policy, ray, prim, c, fields),
-                                   c.entering};
-            ++out.count;
+            // Written in place, as intersect()'s record (a Hit built and copied in is read back
+            // through failed store forwarding); out.item[] starts as fresh records.
+            Passage<scalar_t<Prim>>& p = out.item[out.count++];
+            p.entering = c.entering;
+            if (out.count == 1) detail::write_first_hit(policy, ray, prim, c, earlier_may_count, fields, p.hit);
+            else detail::write_hit(policy, ray, prim, c, fields, p.hit);
         } else {
             earlier_may_count = earlier_may_count || (wants(fields, HitFields::bounds) && detail::may_enter_window(policy, ray, prim, c));
         }

@@ -408,7 +408,7 @@ RAYQ_INLINE bool fill_scene_hit(Policy policy, const Ray<typename Scene<Prims...
 // `accurate`, whether t is correctly rounded: both come from that primitive's crossings computed
 // again, which are not assumed to name the same crossing (FP contraction: see the top of this file;
 // calling intersect() here threw std::bad_optional_access where it found no hit).
-// Forced inline, its visit too, as make_hit is: GCC called the visit out of line per hit (16 capped
+// Forced inline, its visit too, as write_hit is: GCC called the visit out of line per hit (16 capped
 // cylinders under `fast`, point and normal: ~30 instructions per hit for the call alone).
 template <class Policy, class... Prims, std::enable_if_t<is_policy_v<Policy>, int> = 0>
 RAYQ_INLINE SceneHit<typename Scene<Prims...>::scalar_type> complete(Policy policy,
