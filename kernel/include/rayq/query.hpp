@@ -262,7 +262,8 @@ RAYQ_INLINE Vec3<T> outward_normal_on_ray(const Prim& prim, const Ray<T>&, T, co
 // 16 spheres 69.2, 73.6 -> 63.4, 69.8, 16 capped cylinders 116.8, 125.5 -> 115.8, 121.4).
 // Written into h, whose fields not asked for keep what they hold (a fresh Hit's defaults), so that a
 // caller keeping the record in memory gets it stored there field by field (scene.hpp's
-// fill_scene_hit, intersect(), intersect_all()). The bounds come back by value, so h never escapes into a call.
+// fill_scene_hit, intersect(), intersect_all()). The bounds come back by value, so h never escapes
+// into a call.
 template <class Policy, class Prim>
 RAYQ_INLINE void write_hit(Policy policy, const Ray<scalar_t<Prim>>& ray, const Prim& prim, const Crossing<scalar_t<Prim>>& c,
                            HitFields fields, Hit<scalar_t<Prim>>& h)

@@ -222,19 +222,20 @@ struct SceneStore {
     }
 
     // Finds a hit nearer than `best` (the nearest so far, over every store), updating `best`
-    // and narrowing `ray`, the window, to it (`line`: the query's ray, see scan). The window stays one ulp past `best`: the accurate policy
-    // decides the window exactly and may report a root just inside an end as the float next to
-    // it, so ties are settled by comparing t, never by the window's exclusive end.
+    // and narrowing `window` to it (`line`: the query's own ray, see scan). The window stays one
+    // ulp past `best`: the accurate policy decides the window exactly and may report a root just
+    // inside an end as the float next to it, so ties are settled by comparing t, never by the
+    // window's exclusive end.
     template <class Policy>
-    RAYQ_INLINE bool closest(Policy policy, const Ray<T>& line, Ray<T>& ray, NearestSoFar<T>& best, std::size_t& index) const
+    RAYQ_INLINE bool closest(Policy policy, const Ray<T>& line, Ray<T>& window, NearestSoFar<T>& best, std::size_t& index) const
     {
         bool found = false;
-        scan<Policy>(line, ray, [&](std::size_t i) RAYQ_INLINE_LAMBDA {
-            const auto crossings = leading_crossings(policy, ray, items[i]);
-            const Crossing<T>* c = first_in_window(ray, crossings);
+        scan<Policy>(line, window, [&](std::size_t i) RAYQ_INLINE_LAMBDA {
+            const auto crossings = leading_crossings(policy, window, items[i]);
+            const Crossing<T>* c = first_in_window(window, crossings);
             if (c && c->t < best.t) {
                 best.take(*c);
-                ray.tmax = next_up(c->t);
+                window.tmax = next_up(c->t);
                 index = i;
                 found = true;
             }

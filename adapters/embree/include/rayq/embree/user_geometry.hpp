@@ -253,7 +253,7 @@ public:
     // hit nearer than rayq's leaves the context as it was); nullopt when the context holds none of
     // this geometry's. Built from the crossing the callback kept, without computing the
     // primitive's crossings again when none came before it (the scalar intersect() then builds it
-    // from that crossing too: first_hit with no earlier crossing to cover); otherwise as above.
+    // from that crossing too: write_first_hit with no earlier crossing to cover); otherwise as above.
     std::optional<Hit<T>> hit_record(const QueryContext<T>& found, HitFields fields = HitFields::all) const
     {
         std::optional<Hit<T>> out;
