@@ -186,9 +186,27 @@ struct SceneStore {
         // not computed twice (rayq-bench-embree, -march=native, `fast` with point and normal, µs per
         // 4,096 rays, three alternating runs: 16 capped cylinders 116, 114, 129 -> 111, 106, 108;
         // 16 spheres 65, 64, 69 -> 72, 59, 61).
+        // The lanes are walked in the line test's mask and each checked against the window test's
+        // (candidates(), a subset): the walk, and the scalar crossing of the first lane, no longer
+        // wait for the window test, whose verdict is a predictable branch (a ray whose line meets a
+        // primitive mostly has it in its window). The same lanes are visited. Measured with a
+        // scratch program over rayq-bench-embree's scene and rays (16 float spheres, `fast` with
+        // point and normal, -march=native, AVX-512, median of 41 passes, ns per ray): all rays
+        // 15.7 -> 11.4; the 12% of rays that hit 69.8 -> 49.9.
+        const auto line_candidates = [&](std::size_t g) RAYQ_INLINE_LAMBDA {
+            if constexpr (sphere) return batch::sphere_line_candidates(f, soa, g);
+            else if constexpr (batch::bound_test_v<Policy, Prim> != batch::BoundTest::line)
+                return batch::bound_line_candidates<batch::bound_test_v<Policy, Prim>>(f, soa, g);
+            else return candidates(g);  // the plane test, not a window test, follows the line test
+        };
         const auto visit_group = [&](std::size_t g) RAYQ_INLINE_LAMBDA {
-            for (std::uint32_t m = candidates(g); m != 0; m &= m - 1) {
-                const std::size_t i = g * decltype(soa)::width + static_cast<std::size_t>(lowest_bit(m));
+            std::uint32_t m = line_candidates(g);
+            if (m == 0) return false;
+            const std::uint32_t keep = candidates(g);
+            for (; m != 0; m &= m - 1) {
+                const unsigned lane = static_cast<unsigned>(lowest_bit(m));
+                if (!(keep >> lane & 1u)) continue;
+                const std::size_t i = g * decltype(soa)::width + lane;
                 if (valid[i] && visit(i)) return true;
             }
             return false;

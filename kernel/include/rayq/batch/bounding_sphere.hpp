@@ -271,6 +271,16 @@ RAYQ_INLINE auto line_passes_bounds(const BoundFilterRay<T>& f, const BoundSoA<T
     return passes_line<T, Test>(line, dd, P(f.abs_slack)) && line.uu < load(&s.far[i]);
 }
 
+// The lanes of group g that the line test alone keeps (Test ≠ line; no window test): a superset of
+// bound_candidates'. A lane out of range is kept, as bound_keep keeps it.
+template <BoundTest Test, class T>
+RAYQ_INLINE std::uint32_t bound_line_candidates(const BoundFilterRay<T>& f, const BoundSoA<T>& s, std::size_t g)
+{
+    using L = rayq::detail::Lanes<T>;
+    const auto load = [](const T* p) RAYQ_INLINE_LAMBDA { return L::load(p); };
+    return ~L::bits(line_passes_bounds<Test, typename L::pack>(f, s, g * L::width, load)) & s.live(g);
+}
+
 // Whether the ray's line certainly passes every primitive of group g (what a scan skips groups
 // by; bound_candidates then gives them no lane). Always false for Test = line.
 template <BoundTest Test, class T>

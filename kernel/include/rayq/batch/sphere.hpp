@@ -118,6 +118,15 @@ RAYQ_INLINE bool line_passes_group(const SphereFilterRay<T>& f, const UnitLineRa
     return !f.extreme && detail::all_lanes(w > P(unit.slack));
 }
 
+// The lanes of group g whose sphere the ray's line may meet (sphere_line alone, no window test):
+// a superset of sphere_candidates'.
+template <class T>
+RAYQ_INLINE std::uint32_t sphere_line_candidates(const SphereFilterRay<T>& f, const SphereSoA<T>& s, std::size_t g)
+{
+    if (f.extreme) return s.live(g);
+    return ~detail::Lanes<T>::bits(sphere_line(f, s, g).far) & s.live(g);
+}
+
 // Bit i set: sphere i of lane group g may be hit in (tmin, tmax) by some policy; clear: it is
 // certainly missed by every policy. NaN and overflow keep a lane (the scalar path decides).
 template <class T>
