@@ -68,17 +68,35 @@ RAYQ_INLINE bool unscaled_unit(T dd)
 // hit record, 16% of a 16-capped-cylinder scene's samples (rayq-bench-embree, native, `fast` with
 // point and normal over Embree, three alternating runs: 16 capped cylinders 4.77, 4.84, 4.80 ->
 // 4.86, 4.87, 4.99; 16 spheres 5.17, 5.08, 5.06 -> 5.28, 5.31, 6.03).
+// The direct path alone: n = v/|v| and true where it applies, false (n untouched) elsewhere. Where it
+// applies n is never zero: its largest component is at least (1 − ε)/√3 in magnitude.
 template <class T>
-RAYQ_INLINE Vec3<T> unit(const Vec3<T>& v)
+RAYQ_INLINE bool direct_unit(const Vec3<T>& v, Vec3<T>& n)
 {
     const T dd = rayq::dot(v, v);
-    if (unscaled_unit(dd)) return v * (T(1) / std::sqrt(dd));
+    if (!unscaled_unit(dd)) return false;
+    n = v * (T(1) / std::sqrt(dd));
+    return true;
+}
+
+// The other path: v scaled first; zero for a zero or non-finite v.
+template <class T>
+inline Vec3<T> scaled_unit(const Vec3<T>& v)
+{
     // Every component checked: std::max skips a NaN that is not first (NaN < x is false).
     if (!(std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z))) return {T(0), T(0), T(0)};
     const T m = std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
     if (!(m > T(0))) return {T(0), T(0), T(0)};
     const Vec3<T> s = v / m;
     return s / std::sqrt(rayq::dot(s, s));
+}
+
+template <class T>
+RAYQ_INLINE Vec3<T> unit(const Vec3<T>& v)
+{
+    Vec3<T> n;
+    if (direct_unit(v, n)) return n;
+    return scaled_unit(v);
 }
 
 }  // namespace rayq::detail
