@@ -213,7 +213,7 @@ TYPED_TEST(BatchTest, FilterNeverDropsAHit)
             using Policy = std::decay_t<decltype(TypeParam::policy)>;
             if constexpr (!batch::bound_filter_exact_v<Policy, Prim>) return;
             SCOPED_TRACE(typeid(Prim).name());
-            std::size_t kept = 0, lanes = 0, hits = 0, skipped_groups = 0, passed_lanes = 0;
+            std::size_t kept = 0, lanes = 0, hits = 0, skipped_groups = 0, passed_lanes = 0, line_kept = 0;
             for (int scene = 0; scene < 24; ++scene) {
                 // Far from the origin at times: the hit point's rounding grows with |o| and |c|.
                 const V offset = scene % 3 == 0 ? g.unit_vector() * g.log_uniform(1e2, 1e5) : V{0, 0, 0};
@@ -241,6 +241,13 @@ TYPED_TEST(BatchTest, FilterNeverDropsAHit)
                         const bool skipped = scene_skips_group<Policy, Prim>(ray, soa, grp);
                         skipped_groups += skipped;
                         kept += std::bitset<32>(m).count();
+                        // The scene walks the line test's lanes and visits those candidates() keeps
+                        // (SceneStore::scan_filtered): every candidate must be among them.
+                        if constexpr (batch::bound_test_v<Policy, Prim> != batch::BoundTest::line) {
+                            const std::uint32_t line = batch::bound_line_candidates<batch::bound_test_v<Policy, Prim>>(f, soa, grp);
+                            EXPECT_EQ(m & ~line, 0u) << "a candidate the line test drops, group " << grp;
+                            line_kept += std::bitset<32>(line).count();
+                        }
                         for (int lane = 0; lane < batch::BoundSoA<T>::width; ++lane) {
                             const std::size_t i = grp * batch::BoundSoA<T>::width + std::size_t(lane);
                             if (i >= prims.size()) break;
@@ -267,6 +274,9 @@ TYPED_TEST(BatchTest, FilterNeverDropsAHit)
             }
             if (batch::bound_test_v<Policy, Prim> != batch::BoundTest::line) {
                 EXPECT_GT(passed_lanes, lanes / 2);
+                // The line test alone culls too (the window test only narrows what it keeps).
+                EXPECT_GE(line_kept, kept);
+                EXPECT_LT(line_kept, lanes / 2) << "the line test kept " << line_kept << " of " << lanes << " lanes";
             }
         },
         static_cast<Bounded<T>*>(nullptr));

@@ -101,7 +101,7 @@ TYPED_TEST(SceneTest, SphereFilterNeverDropsAHit)
 {
     using T = typename TypeParam::T;
     World<T> w(0x5CE4E001 + sizeof(T));
-    std::size_t kept = 0, hits = 0, lanes = 0, passed = 0, passed_unit = 0;
+    std::size_t kept = 0, hits = 0, lanes = 0, passed = 0, passed_unit = 0, line_kept = 0;
     for (int scene = 0; scene < 40; ++scene) {
         batch::SphereSoA<T> soa;
         std::vector<Sphere<T>> spheres;
@@ -117,6 +117,11 @@ TYPED_TEST(SceneTest, SphereFilterNeverDropsAHit)
             for (std::size_t g = 0; g < soa.groups(); ++g) {
                 const std::uint32_t m = batch::sphere_candidates(f, ray.tmin, ray.tmax, soa, g);
                 kept += std::bitset<32>(m).count();
+                // The scene walks the line test's lanes and visits those candidates() keeps
+                // (SceneStore::scan_filtered): every candidate must be among them.
+                const std::uint32_t line = batch::sphere_line_candidates(f, soa, g);
+                EXPECT_EQ(m & ~line, 0u) << "a candidate the line test drops, group " << g;
+                line_kept += std::bitset<32>(line).count();
                 const bool line_passes = batch::line_passes_group(f, soa, g);
                 const bool unit_passes = batch::line_passes_group(f, unit, soa, g);
                 passed += line_passes;
@@ -139,6 +144,8 @@ TYPED_TEST(SceneTest, SphereFilterNeverDropsAHit)
     }
     // It must also cull: rays aimed at one of 64 scattered spheres pass most of the others by.
     EXPECT_LT(kept, lanes / 2) << "kept " << kept << " of " << lanes << " lanes (" << hits << " hits)";
+    EXPECT_GE(line_kept, kept);
+    EXPECT_LT(line_kept, lanes / 2) << "the line test kept " << line_kept << " of " << lanes << " lanes";
     // The two line tests differ only by rounding: d/|d| skips nearly every group d skips.
     EXPECT_GE(passed_unit, passed - passed / 100) << passed_unit << " groups skipped against d/|d|, " << passed << " against d";
     EXPECT_GT(passed, 0u);
