@@ -181,18 +181,21 @@ struct SceneStore {
             if constexpr (sphere) return batch::line_passes_group(f, soa, g);
             else return batch::line_passes_group<batch::bound_test_v<Policy, Prim>>(f, soa, g);
         };
-        // One lane group (up to 16 float primitives under AVX-512): candidates() alone, whose own
-        // early exit when the line passes every bound is the skip, so a kept group's line test is
-        // not computed twice (rayq-bench-embree, -march=native, `fast` with point and normal, µs per
-        // 4,096 rays, three alternating runs: 16 capped cylinders 116, 114, 129 -> 111, 106, 108;
-        // 16 spheres 65, 64, 69 -> 72, 59, 61).
+        // One lane group (up to 16 float primitives under AVX-512): visit_group alone, whose line
+        // mask is the skip, with no separate line_passes_group first, so a kept group's line test is
+        // not computed twice (the compiler shares it between line_candidates() and candidates(), both
+        // inline in one body; rayq-bench-embree, -march=native, `fast` with point and normal, µs per
+        // 4,096 rays, three alternating runs, when candidates() held the skip: 16 capped cylinders
+        // 116, 114, 129 -> 111, 106, 108; 16 spheres 65, 64, 69 -> 72, 59, 61).
         // The lanes are walked in the line test's mask and each checked against the window test's
         // (candidates(), a subset): the walk, and the scalar crossing of the first lane, no longer
         // wait for the window test, whose verdict is a predictable branch (a ray whose line meets a
-        // primitive mostly has it in its window). The same lanes are visited. Measured with a
-        // scratch program over rayq-bench-embree's scene and rays (16 float spheres, `fast` with
-        // point and normal, -march=native, AVX-512, median of 41 passes, ns per ray): all rays
-        // 15.7 -> 11.4; the 12% of rays that hit 69.8 -> 49.9.
+        // primitive mostly has it in its window). The same lanes are visited. rayq-bench-embree,
+        // -march=native, Xeon with AVX-512, `fast` with point and normal, `--rounds=3`, pinned, ms
+        // per 65,536 rays: 16 capped cylinders 2.07 -> 1.62 (3.96x -> 5.01x Embree's cone curves),
+        // 16 spheres 1.09 -> 0.98 (4.48x -> 4.96x); a ray with a candidate had waited for the window
+        // test's ~15 lane operations before its first crossing (scratch program, 16 spheres, rays
+        // with a candidate: 72.5 -> 61.8 ns; 16 capped cylinders 93.3 -> 77.2 ns).
         const auto line_candidates = [&](std::size_t g) RAYQ_INLINE_LAMBDA {
             if constexpr (sphere) return batch::sphere_line_candidates(f, soa, g);
             else if constexpr (batch::bound_test_v<Policy, Prim> != batch::BoundTest::line)
