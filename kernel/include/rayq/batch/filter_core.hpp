@@ -101,9 +101,9 @@ struct RayScale {
     }
 };
 
-// The sphere filter's ray: the line test's side of it (sphere_line), whose comparison is divided
-// by 1 − Kε and multiplied by |d|²: d/√(1 − Kε), |d|², the underflow slack times |d|²/(1 − Kε)
-// (k_min·(|d|² + 1): no subnormal step). The window test (sphere_candidates) is multiplied by |d|²
+// The sphere filter's ray: the line test's side of it (sphere_line), whose comparison is multiplied
+// by |d|²: d, (1 − Kε)·|d|², the underflow slack times |d|² (k_min·(|d|² + 1): no subnormal step).
+// The window test (sphere_candidates) is multiplied by |d|²
 // and squared, and takes its terms from |d|² where it runs. Neither needs a square root or a
 // division: most rays of a scene pass
 // every group by the line test alone, and a ray with a candidate no longer waits for |d| and 1/|d|
@@ -113,21 +113,21 @@ struct RayScale {
 // first deferred).
 template <class T>
 struct SphereFilterRay : FilterRay<T> {
-    Vec3<T> line_dir;
-    T dd, line_slack;
+    Vec3<T> direction;
+    T dd, line_dd, line_slack;  // |d|², (1 − Kε)·|d|², k_min·(|d|² + 1)
     bool extreme;  // |d| or |o|₁ at least `huge` (|d|² against huge²: the margin above is 4): keep every lane
 
     RAYQ_INLINE explicit SphereFilterRay(const Ray<T>& ray) : FilterRay<T>(ray)
     {
-        line_dir = ray.direction * line_scale;
+        direction = ray.direction;
         dd = dot(ray.direction, ray.direction);
-        line_slack = FilterRay<T>::k_min * (dd + T(1)) * (line_scale * line_scale);
+        line_dd = dd * (T(1) - FilterRay<T>::k_eps());
+        line_slack = FilterRay<T>::k_min * (dd + T(1));
         extreme = !(dd < this->huge * this->huge && this->o1 < this->huge);
     }
-    static inline const T line_root = std::sqrt(T(1) - FilterRay<T>::k_eps()), line_scale = T(1) / line_root;
 };
 
-// The same line test divided by |d|² (batch/sphere.hpp, line_passes_group): d/|d| where
+// The same line test divided by (1 − Kε)·|d|² (batch/sphere.hpp, line_passes_group): d/|d| where
 // SphereFilterRay has d, for scans over many lane groups. Its square root and division wait before
 // the first group, but each group then needs one product fewer (rayq-bench-embree, -march=native,
 // AVX2, `fast` with point and normal, ms per 65,536 rays, medians of 15: 1,000 spheres 19.5 ->
@@ -137,15 +137,16 @@ struct SphereFilterRay : FilterRay<T> {
 template <class T>
 struct UnitLineRay {
     Vec3<T> n;  // d/(|d|·√(1 − Kε))
-    T slack;    // SphereFilterRay::line_slack / |d|², rounded up (0.1%, far above its few roundings)
+    T slack;    // SphereFilterRay::line_slack / ((1 − Kε)·|d|²), rounded up (0.1%, far above its few roundings)
 
     RAYQ_INLINE explicit UnitLineRay(const Vec3<T>& direction, T dd)
     {
         constexpr T scale2 = T(1) / (T(1) - FilterRay<T>::k_eps());
         const T inv_dd = T(1) / dd;
-        n = direction * (SphereFilterRay<T>::line_scale * std::sqrt(inv_dd));
+        n = direction * (line_scale * std::sqrt(inv_dd));
         slack = FilterRay<T>::k_min * scale2 * (T(1) + inv_dd) * T(1.001);
     }
+    static inline const T line_scale = T(1) / std::sqrt(T(1) - FilterRay<T>::k_eps());  // 1/√(1 − Kε)
 };
 
 template <class T>

@@ -53,7 +53,7 @@ struct SphereSoA {
 };
 
 // The line test of sphere_candidates: which lanes of group g the ray's line certainly passes by,
-// and u·d/√(1 − Kε) (times −√(1 − Kε)/|d|²: the center's t).
+// and u·d (times −1/|d|²: the center's t).
 template <class P>
 struct SphereLine {
     P ud;
@@ -77,20 +77,24 @@ RAYQ_INLINE SphereLine<typename detail::Lanes<T>::pack> sphere_line(const Sphere
     const std::size_t i = g * L::width;
     const auto [ux, uy, uz] = offsets_from_centers(f, s, g);
     // The line passes by when ℓ² > r² + Kε·(|u|² + r²) + slack, ℓ² = |u|² − (u·d)²/|d|² the
-    // squared distance from the center to the line. Divided by 1 − Kε and multiplied by |d|², that
-    // is (|u|² − r²·(1 + Kε)/(1 − Kε))·|d|² − (u·d/√(1 − Kε))² > slack·|d|²/(1 − Kε): every factor
-    // moves to the ray's side (f.dd, f.line_dir, f.line_slack) or the sphere's (SphereSoA::reach2).
+    // squared distance from the center to the line. Multiplied by |d|², that is
+    // (|u|² − r²·(1 + Kε)/(1 − Kε))·(1 − Kε)·|d|² − (u·d)² > slack·|d|²: every factor moves to the
+    // ray's side (f.line_dd, f.line_slack) or the sphere's (SphereSoA::reach2), and u·d is the
+    // window test's too. (It was divided by 1 − Kε, u·d scaled by 1/√(1 − Kε): three products per
+    // ray on the way to the first lane test and one per kept group; rayq-bench-embree, native,
+    // AVX-512, `fast` with point and normal, `--rounds=3`, three alternating runs: 16 spheres
+    // 0.942, 0.952, 0.946 -> 0.917, 0.926, 0.923 ms per 65,536 rays.)
     // With d itself rather than d/|d|, no square root and division stand between a ray and its
     // first lane test: most rays of a scene miss every sphere, and that chain was most of their
     // time (16 float spheres, -march=native, ns per ray of a closest hit with point and normal:
     // 20.3 -> 17.9; 1,000 spheres, where the extra product per lane group counts, 137.8 -> 140.2).
     // Computed with cancellation, its error (≤ 16ε·(|u|² + r²)·|d|², with the stored sides'
-    // and |d|²'s rounding) is inside the Kε slack; clarity beats precision here. Finite: |u|, |d|
+    // and (1 − Kε)·|d|²'s rounding) is inside the Kε slack; clarity beats precision here. Finite: |u|, |d|
     // and r are below 2H (FilterRay::huge, else the lane or the ray keeps everything), so the
     // products stay below 12H⁴.
     const P uu = uz * uz + uy * uy + ux * ux;
-    const P ud = ux * P(f.line_dir.x) + uy * P(f.line_dir.y) + uz * P(f.line_dir.z);
-    return {ud, (uu - L::load(&s.reach2[i])) * P(f.dd) - ud * ud > P(f.line_slack)};
+    const P ud = ux * P(f.direction.x) + uy * P(f.direction.y) + uz * P(f.direction.z);
+    return {ud, (uu - L::load(&s.reach2[i])) * P(f.line_dd) - ud * ud > P(f.line_slack)};
 }
 
 // Whether the ray's line certainly passes by every sphere of group g (what a scan skips by).
@@ -100,8 +104,8 @@ RAYQ_INLINE bool line_passes_group(const SphereFilterRay<T>& f, const SphereSoA<
     return !f.extreme && detail::all_lanes(sphere_line(f, s, g).far);
 }
 
-// The same answer from sphere_line's comparison divided by |d|² (UnitLineRay): the line passes by
-// when |u|² − reach² − (u·n)² > slack, n = d/(|d|·√(1 − Kε)): seven multiplies per group where
+// The same answer from sphere_line's comparison divided by (1 − Kε)·|d|² (UnitLineRay): the line
+// passes by when |u|² − reach² − (u·n)² > slack, n = d/(|d|·√(1 − Kε)): seven multiplies per group where
 // sphere_line has eight. Its rounding: the cancelling sum errs by at most 16ε·(|u|² + r²), as
 // sphere_line's does before its factor |d|², and n's own (a division, a square root, three
 // products: ≤ 5ε relative) adds ≤ 11ε·|u|² to (u·n)²: inside the Kε slack with room. Finite under
@@ -150,7 +154,7 @@ RAYQ_INLINE std::uint32_t sphere_candidates(const SphereFilterRay<T>& f, T tmin,
     // Underflow needs no slack of its own: x > 0 puts tmin or tmax more than slack_t from tc, so a
     // dropped sphere the policy hits in the window would have (1 + 2√(Kε))·r/|d| > slack_t ≥
     // √(K·min)/|d|·max(1, 1/|d|): its right side exceeds K·min, a normal number, rounded, not flushed.
-    const P e = -l.ud * P(SphereFilterRay<T>::line_root);  // tc·|d|²
+    const P e = -l.ud;  // tc·|d|²
     const P se = P(sqrt_k_eps) * detail::abs_lanes(e);
     const T widen = T(1) + T(2) * sqrt_k_eps;
     // slack_t·|d|² = √(K·min)·(|d| + |d|²) at most √(K·min)·(1/2 + 3|d|²/2), as |d| ≤ (1 + |d|²)/2.
