@@ -137,7 +137,7 @@ struct SphereFilterRay : FilterRay<T> {
 template <class T>
 struct UnitLineRay {
     Vec3<T> n;  // d/(|d|·√(1 − Kε))
-    T slack;    // SphereFilterRay::line_slack / ((1 − Kε)·|d|²), rounded up (0.1%, far above its few roundings)
+    T slack;    // SphereFilterRay::line_slack / ((1 − Kε)·|d|²), rounded up (0.1%, above its roundings)
 
     RAYQ_INLINE explicit UnitLineRay(const Vec3<T>& direction, T dd)
     {

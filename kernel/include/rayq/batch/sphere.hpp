@@ -88,9 +88,9 @@ RAYQ_INLINE SphereLine<typename detail::Lanes<T>::pack> sphere_line(const Sphere
     // first lane test: most rays of a scene miss every sphere, and that chain was most of their
     // time (16 float spheres, -march=native, ns per ray of a closest hit with point and normal:
     // 20.3 -> 17.9; 1,000 spheres, where the extra product per lane group counts, 137.8 -> 140.2).
-    // Computed with cancellation, its error (≤ 16ε·(|u|² + r²)·|d|², with the stored sides'
-    // and (1 − Kε)·|d|²'s rounding) is inside the Kε slack; clarity beats precision here. Finite: |u|, |d|
-    // and r are below 2H (FilterRay::huge, else the lane or the ray keeps everything), so the
+    // Computed with cancellation, its error (≤ 16ε·(|u|² + r²)·|d|², with the stored sides' and
+    // (1 − Kε)·|d|²'s rounding) is inside the Kε slack; clarity beats precision here. Finite: |u|,
+    // |d| and r are below 2H (FilterRay::huge, else the lane or the ray keeps everything), so the
     // products stay below 12H⁴.
     const P uu = uz * uz + uy * uy + ux * ux;
     const P ud = ux * P(f.direction.x) + uy * P(f.direction.y) + uz * P(f.direction.z);
@@ -105,8 +105,8 @@ RAYQ_INLINE bool line_passes_group(const SphereFilterRay<T>& f, const SphereSoA<
 }
 
 // The same answer from sphere_line's comparison divided by (1 − Kε)·|d|² (UnitLineRay): the line
-// passes by when |u|² − reach² − (u·n)² > slack, n = d/(|d|·√(1 − Kε)): seven multiplies per group where
-// sphere_line has eight. Its rounding: the cancelling sum errs by at most 16ε·(|u|² + r²), as
+// passes by when |u|² − reach² − (u·n)² > slack, n = d/(|d|·√(1 − Kε)): seven multiplies per group
+// where sphere_line has eight. Its rounding: the cancelling sum errs by at most 16ε·(|u|² + r²), as
 // sphere_line's does before its factor |d|², and n's own (a division, a square root, three
 // products: ≤ 5ε relative) adds ≤ 11ε·|u|² to (u·n)²: inside the Kε slack with room. Finite under
 // the same bounds (|u|, r below 2H, |n| ≈ 1).

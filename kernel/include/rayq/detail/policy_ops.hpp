@@ -57,19 +57,8 @@ RAYQ_INLINE bool unscaled_unit(T dd)
     return dd >= smallest_unscaled && dd <= std::numeric_limits<T>::max();
 }
 
-// Unit vector along v. Returns {0,0,0} for a zero or non-finite v.
-// Where |v|² is finite and far above the subnormals (squares too small to count may underflow:
-// they lose less than an ulp of |v|²), v times 1/|v|: one division instead of six, and each
-// component rounded once after the common factor, which does not turn the vector (float sphere hits
-// with the full record, SSE2, fast / accurate: 989 -> 957 / 847 -> 819 instructions, callgrind;
-// 79 -> 69 / 97 -> 91 ns, min of 31 runs). Otherwise v is first scaled by its largest component,
-// so that neither tiny nor huge vectors under- or overflow in the squared length.
-// Forced inline, as the cylinder's outward_normal() is: GCC called both out of line from a scene's
-// hit record, 16% of a 16-capped-cylinder scene's samples (rayq-bench-embree, native, `fast` with
-// point and normal over Embree, three alternating runs: 16 capped cylinders 4.77, 4.84, 4.80 ->
-// 4.86, 4.87, 4.99; 16 spheres 5.17, 5.08, 5.06 -> 5.28, 5.31, 6.03).
-// The direct path alone: n = v/|v| and true where it applies, false (n untouched) elsewhere. Where it
-// applies n is never zero: its largest component is at least (1 − ε)/√3 in magnitude.
+// unit()'s direct path alone (see unit() below): n = v·(1/|v|) and true where it applies, false (n
+// untouched) elsewhere. Where it applies n is never zero: its largest component is about 1/√3 or more.
 template <class T>
 RAYQ_INLINE bool direct_unit(const Vec3<T>& v, Vec3<T>& n)
 {
@@ -79,7 +68,7 @@ RAYQ_INLINE bool direct_unit(const Vec3<T>& v, Vec3<T>& n)
     return true;
 }
 
-// The other path: v scaled first; zero for a zero or non-finite v.
+// unit()'s other path: v scaled by its largest component first; zero for a zero or non-finite v.
 template <class T>
 inline Vec3<T> scaled_unit(const Vec3<T>& v)
 {
@@ -91,6 +80,18 @@ inline Vec3<T> scaled_unit(const Vec3<T>& v)
     return s / std::sqrt(rayq::dot(s, s));
 }
 
+// Unit vector along v. Returns {0,0,0} for a zero or non-finite v.
+// Where |v|² is finite and far above the subnormals (squares too small to count may underflow:
+// they lose less than an ulp of |v|²), v times 1/|v|: one division instead of six, and each
+// component rounded once after the common factor, which does not turn the vector (float sphere hits
+// with the full record, SSE2, fast / accurate: 989 -> 957 / 847 -> 819 instructions, callgrind;
+// 79 -> 69 / 97 -> 91 ns, min of 31 runs). Otherwise v is first scaled by its largest component,
+// so that neither tiny nor huge vectors under- or overflow in the squared length.
+// Forced inline, as the cylinder's outward_normal() is: GCC called both out of line from a scene's
+// hit record, 16% of a 16-capped-cylinder scene's samples (rayq-bench-embree, native, `fast` with
+// point and normal over Embree, three alternating runs: 16 capped cylinders 4.77, 4.84, 4.80 ->
+// 4.86, 4.87, 4.99; 16 spheres 5.17, 5.08, 5.06 -> 5.28, 5.31, 6.03).
+// Two entry points for callers that treat the rare path apart (write_hit): direct_unit, scaled_unit.
 template <class T>
 RAYQ_INLINE Vec3<T> unit(const Vec3<T>& v)
 {
